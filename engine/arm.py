@@ -1,0 +1,91 @@
+"""The arm: the muscle on its skeleton, changing length within what both allow."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from engine.errors import RefusedChange
+from engine.muscle import Muscle
+from engine.skeleton import ArmPose, Skeleton
+
+
+@dataclass(frozen=True)
+class Arm:
+    """A muscle, the skeleton it spans and optional limits (cm) on its length.
+
+    Immutable like :class:`Muscle`: a change returns a new arm or raises
+    :class:`RefusedChange` and leaves this one as it was.
+    """
+
+    muscle: Muscle
+    skeleton: Skeleton
+    min_length: float | None = None
+    max_length: float | None = None
+
+    @property
+    def length(self) -> float:
+        return self.muscle.length
+
+    @property
+    def flexion(self) -> float:
+        """Elbow flexion in degrees: 0 with the arm straight."""
+        return self.skeleton.flexion(self.length)
+
+    @property
+    def pose(self) -> ArmPose:
+        return self.skeleton.pose(self.length)
+
+    def length_range(self) -> tuple[float, float]:
+        """The shortest and longest length (cm): the joint's range and the config's limits."""
+        low, high = self.skeleton.length_range()
+        if self.min_length is not None:
+            low = max(low, self.min_length)
+        if self.max_length is not None:
+            high = min(high, self.max_length)
+        return low, high
+
+    def at_length(self, length: float) -> Arm:
+        """The arm with the muscle at ``length`` cm, or :class:`RefusedChange` if outside."""
+        low, high = self.length_range()
+        if not low <= length <= high:
+            raise RefusedChange(
+                f"length {length:.2f} cm is outside what this arm allows: "
+                f"{low:.2f} to {high:.2f} cm (elbow flexion "
+                f"{self.skeleton.flexion(high):.0f} to {self.skeleton.flexion(low):.0f} degrees)"
+            )
+        return replace(self, muscle=self.muscle.at_length(length))
+
+    def at_flexion(self, flexion: float) -> Arm:
+        """The arm with the elbow at ``flexion`` degrees."""
+        low, high = self.skeleton.min_flexion, self.skeleton.max_flexion
+        if not low <= flexion <= high:
+            raise RefusedChange(
+                f"flexion {flexion:g} degrees is outside the joint's range, {low:g} to {high:g}"
+            )
+        return self.at_length(self.skeleton.length_at(flexion))
+
+    def stepped(self, change: float) -> tuple[Arm, str | None]:
+        """The muscle lengthened by ``change`` cm (shortened if negative), stopping at a limit.
+
+        Returns the new arm and, when it stopped at a limit, a sentence saying which.
+        """
+        low, high = self.length_range()
+        target = self.length + change
+        if target < low:
+            return self.at_length(low), self._limit_note(low, "shortest")
+        if target > high:
+            return self.at_length(high), self._limit_note(high, "longest")
+        return self.at_length(target), None
+
+    def _limit_note(self, length: float, which: str) -> str:
+        flexion = self.skeleton.flexion(length)
+        if which == "longest" and flexion < 0.05:
+            return f"the arm is straight: the muscle is at its longest, {length:.2f} cm"
+        return (
+            f"the muscle is at its {which}, {length:.2f} cm "
+            f"(elbow flexion {flexion:.0f} degrees)"
+        )
+
+    def with_muscle(self, muscle: Muscle) -> Arm:
+        """The arm with an edited muscle (same length, so the skeleton does not move)."""
+        return replace(self, muscle=muscle)

@@ -1,0 +1,405 @@
+"""Configuration files: one TOML file describes the muscle, the skeleton, the view, the light
+and how to render.
+
+Reading uses ``tomllib`` and validates with pydantic, so every error names the file, the
+line where it can be found, the field's path, what was found and what is allowed. Unknown
+keys are errors: a typo must not be silently ignored. Saving edits the user's own document
+with ``tomlkit`` (comments and layout survive) and replaces the file atomically.
+"""
+
+from __future__ import annotations
+
+import difflib
+import os
+import re
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+import tomlkit
+from pydantic import AllowInfNan, BaseModel, ConfigDict, Field, Strict, ValidationError, model_validator
+
+from engine.arm import Arm
+from engine.errors import ConfigError, RefusedChange
+from engine.files import write_atomically
+from engine.muscle import Muscle
+from engine.skeleton import Skeleton, check_skeleton
+
+DEFAULT_CONFIG = Path(__file__).resolve().parent.parent / "configs" / "biceps.toml"
+
+# Strict numbers: "1.5" is not a number and true is not 1 (an int is still a fine float).
+Number = Annotated[float, Strict(), AllowInfNan(False)]
+Positive = Annotated[Number, Field(gt=0)]
+NonNegative = Annotated[Number, Field(ge=0)]
+Fraction = Annotated[Number, Field(ge=0, le=1)]
+Degrees = Annotated[Number, Field(ge=0, le=180)]
+Vector = tuple[Number, Number, Number]
+Colour = Annotated[str, Field(pattern=r"^#[0-9a-fA-F]{6}$")]
+
+
+class _Table(BaseModel):
+    # forbid: a misspelt key is an error, not a silent default; frozen: settings are values.
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class MuscleTable(_Table):
+    volume: Literal["closed", "frusta"] = "closed"
+    length: Positive | None = None
+    flexion: Degrees | None = None
+    min_length: Positive | None = None
+    max_length: Positive | None = None
+    nodes: list[tuple[Positive, NonNegative]] | None = None
+    radius: list[Positive] | None = None
+    growth: list[NonNegative] | None = None
+
+    @model_validator(mode="after")
+    def _one_way_each(self) -> MuscleTable:
+        if self.nodes is None and self.radius is None and self.growth is None:
+            raise ValueError(
+                "no nodes: give nodes = [[radius, growth], ...] or the two lists radius and growth"
+            )
+        if self.nodes is not None and (self.radius is not None or self.growth is not None):
+            raise ValueError("give the nodes either as nodes or as radius and growth, not both")
+        if self.nodes is None and (self.radius is None or self.growth is None):
+            missing = "growth" if self.growth is None else "radius"
+            raise ValueError(f"radius and growth go together: {missing} is missing")
+        if self.radius is not None and len(self.radius) != len(self.growth):
+            raise ValueError(
+                f"radius has {len(self.radius)} values but growth has {len(self.growth)}: "
+                "each node needs one of each"
+            )
+        if (self.length is None) == (self.flexion is None):
+            raise ValueError("give exactly one of length (cm) and flexion (degrees)")
+        return self
+
+    def profile(self) -> tuple[list[float], list[float]]:
+        if self.nodes is not None:
+            return [r for r, _ in self.nodes], [m for _, m in self.nodes]
+        return list(self.radius), list(self.growth)
+
+
+class SkeletonTable(_Table):
+    upper_arm: Positive = 29.1
+    origin_to_elbow: Positive = 30.2
+    elbow_to_insertion: Positive = 5.4
+    forearm: Positive = 25.4
+    flexion_range: tuple[Degrees, Degrees] = (0.0, 130.0)
+
+
+class ViewTable(_Table):
+    """How the model is turned, moved and scaled, and the camera's field of view."""
+
+    yaw: Number = 0.0
+    pitch: Number = 0.0
+    roll: Number = 0.0
+    scale: Positive = 1.0
+    offset: Vector = (0.0, 0.0, 0.0)
+    fov: Annotated[Number, Field(gt=1, lt=170)] = 35.0
+
+
+class LightTable(_Table):
+    """A point light in world space (cm), and the weights of the shading terms."""
+
+    position: Vector = (60.0, 80.0, 120.0)
+    ambient: Fraction = 0.2
+    diffuse: Fraction = 0.8
+    specular: Fraction = 0.3
+    shininess: Annotated[Number, Field(ge=1, le=512)] = 24.0
+
+
+class RenderTable(_Table):
+    segments: Annotated[int, Strict(), Field(ge=3, le=1024)] = 48
+    shading: Literal["gouraud", "phong"] = "gouraud"
+    ssaa: Annotated[int, Strict(), Field(ge=1, le=4)] = 1
+    muscle_colour: Colour = "#b4483e"
+    bone_colour: Colour = "#e3d9c0"
+    background: Colour = "#12161c"
+
+
+class ConfigFile(_Table):
+    muscle: MuscleTable
+    skeleton: SkeletonTable = SkeletonTable()
+    view: ViewTable = ViewTable()
+    light: LightTable = LightTable()
+    render: RenderTable = RenderTable()
+
+
+def rgb(colour: str) -> tuple[int, int, int]:
+    """``"#rrggbb"`` as three 0-255 integers."""
+    return int(colour[1:3], 16), int(colour[3:5], 16), int(colour[5:7], 16)
+
+
+@dataclass(frozen=True)
+class Config:
+    """Everything one file describes, ready to use; ``source`` is the text it was read from."""
+
+    path: Path
+    arm: Arm
+    view: ViewTable
+    light: LightTable
+    render: RenderTable
+    source: str
+
+
+def load_config(path: str | os.PathLike) -> Config:
+    """Read and validate a configuration file; raises :class:`ConfigError` saying why not."""
+    path = Path(path)
+    source = _read_text(path)
+    try:
+        data = tomllib.loads(source)
+    except tomllib.TOMLDecodeError as error:
+        raise ConfigError(f"{path}: not valid TOML: {error}") from None
+    try:
+        table = ConfigFile.model_validate(data)
+    except ValidationError as error:
+        raise ConfigError(_describe(path, source, error)) from None
+    arm = _build_arm(path, source, table)
+    return Config(path, arm, table.view, table.light, table.render, source)
+
+
+def _read_text(path: Path) -> str:
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: no such file") from None
+    except IsADirectoryError:
+        raise ConfigError(f"{path}: is a directory, not a configuration file") from None
+    except OSError as error:
+        raise ConfigError(f"{path}: cannot be read: {error.strerror}") from None
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise ConfigError(
+            f"{path}: not a text file (byte {error.start} is not UTF-8); "
+            "a configuration is a TOML text file"
+        ) from None
+
+
+def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
+    muscle_table, skeleton_table = table.muscle, table.skeleton
+    skeleton = Skeleton(
+        upper_arm=skeleton_table.upper_arm,
+        origin_to_elbow=skeleton_table.origin_to_elbow,
+        elbow_to_insertion=skeleton_table.elbow_to_insertion,
+        forearm=skeleton_table.forearm,
+        min_flexion=skeleton_table.flexion_range[0],
+        max_flexion=skeleton_table.flexion_range[1],
+    )
+
+    def fail(location: tuple, message: str) -> ConfigError:
+        return ConfigError(_located(path, source, location, message))
+
+    try:
+        check_skeleton(skeleton)
+    except RefusedChange as error:
+        raise fail(("skeleton", "flexion_range"), str(error).removeprefix("skeleton ")) from None
+    if muscle_table.flexion is not None:
+        if not skeleton.min_flexion <= muscle_table.flexion <= skeleton.max_flexion:
+            raise fail(
+                ("muscle", "flexion"),
+                f"{muscle_table.flexion:g} degrees is outside skeleton.flexion_range, "
+                f"{skeleton.min_flexion:g} to {skeleton.max_flexion:g}",
+            )
+        length = skeleton.length_at(muscle_table.flexion)
+    else:
+        length = muscle_table.length
+    radii, growth = muscle_table.profile()
+    try:
+        muscle = Muscle.of(radii, growth, length, muscle_table.volume)
+    except RefusedChange as error:
+        key = "nodes" if muscle_table.nodes is not None else "growth"
+        raise fail(("muscle", key), str(error)) from None
+    arm = Arm(muscle, skeleton, muscle_table.min_length, muscle_table.max_length)
+    low, high = arm.length_range()
+    if low > high:
+        raise fail(
+            ("muscle", "min_length"),
+            f"the limits leave no length: min_length, max_length and the joint's range "
+            f"intersect to nothing ({low:.2f} > {high:.2f} cm)",
+        )
+    if not low - 1e-9 <= length <= high + 1e-9:
+        key = "flexion" if muscle_table.flexion is not None else "length"
+        raise fail(
+            ("muscle", key),
+            f"length {length:.2f} cm is outside what the skeleton and limits allow: "
+            f"{low:.2f} to {high:.2f} cm",
+        )
+    return arm
+
+
+def _describe(path: Path, source: str, error: ValidationError) -> str:
+    """One line per problem: ``file:line: field.path: what is wrong (found ...)``."""
+    lines = []
+    for problem in error.errors(include_url=False):
+        location = problem["loc"]
+        kind = problem["type"]
+        if kind == "extra_forbidden":
+            message = _unknown_key_message(location)
+        elif kind == "missing" and len(location) == 1:
+            message = f"the [{location[0]}] table is required, but missing"
+        elif kind == "missing":
+            message = "required, but missing"
+        elif kind == "string_pattern_mismatch":  # the only patterns are colours
+            message = f"should be a colour written #rrggbb (found {_shown(problem['input'])})"
+        else:
+            message = problem["msg"].removeprefix("Value error, ")
+            if kind != "value_error" and not isinstance(problem["input"], dict):
+                message += f" (found {_shown(problem['input'])})"
+        lines.append(_located(path, source, location, message))
+    return "\n".join(lines)
+
+
+def _unknown_key_message(location: tuple) -> str:
+    *parents, key = location
+    model: Any = ConfigFile
+    for part in parents:
+        field = model.model_fields.get(part) if isinstance(part, str) else None
+        annotation = getattr(field, "annotation", None)
+        model = annotation if isinstance(annotation, type) and issubclass(annotation, BaseModel) else None
+        if model is None:
+            break
+    allowed = list(model.model_fields) if model is not None else []
+    message = f"unknown key {key!r}"
+    close = difflib.get_close_matches(str(key), allowed, n=1)
+    if close:
+        message += f" (did you mean {close[0]!r}?)"
+    if allowed:
+        message += f"; allowed here: {', '.join(allowed)}"
+    return message
+
+
+def _shown(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _located(path: Path, source: str, location: tuple, message: str) -> str:
+    dotted = ".".join(str(part) for part in location if isinstance(part, str))
+    for part in location:
+        if isinstance(part, int):
+            dotted += f"[{part}]"
+    line = _line_of(source, location)
+    where = f"{path}:{line}" if line else str(path)
+    return f"{where}: {dotted}: {message}" if dotted else f"{where}: {message}"
+
+
+_TABLE_HEADER = re.compile(r"^\s*\[\s*([A-Za-z0-9_.\- ]+?)\s*\]")
+
+
+def _line_of(source: str, location: tuple) -> int | None:
+    """The 1-based line where the key at ``location`` is written, when it can be found.
+
+    pydantic knows field paths but not TOML lines, so this finds ``key =`` under the right
+    ``[table]`` header (or the header itself); good enough for the layouts people write.
+    """
+    keys = [part for part in location if isinstance(part, str)]
+    if not keys:
+        return None
+    table, key = ".".join(keys[:-1]), keys[-1]
+    current = ""
+    assignment = re.compile(rf"^\s*{re.escape(key)}\s*=")
+    for number, line in enumerate(source.splitlines(), start=1):
+        header = _TABLE_HEADER.match(line)
+        if header:
+            current = header.group(1).replace(" ", "")
+            if current == ".".join(keys):
+                return number
+        elif current == table and assignment.match(line):
+            return number
+    return None
+
+
+def save_config(config: Config, arm: Arm, view: ViewTable, light: LightTable,
+                render: RenderTable, path: str | os.PathLike | None = None) -> Config:
+    """Write ``arm`` and the settings into ``config``'s document and replace the file atomically.
+
+    Only values that differ from what the file says (or implies by default) are written, so
+    the user's comments, order and layout survive. ``path`` saves a copy elsewhere ("save
+    as"). Returns the configuration as now on disk; raises :class:`ConfigError` and leaves
+    every file as it was when it cannot write.
+    """
+    target = Path(path) if path is not None else config.path
+    document = tomlkit.parse(config.source)
+    _write_muscle(document, arm)
+    _write_changes(document, "skeleton", SkeletonTable(), _skeleton_table(arm.skeleton))
+    _write_changes(document, "view", ViewTable(), view)
+    _write_changes(document, "light", LightTable(), light)
+    _write_changes(document, "render", RenderTable(), render)
+    text = tomlkit.dumps(document)
+    write_atomically(target, text.encode("utf-8"))
+    return load_config(target)
+
+
+def _skeleton_table(skeleton: Skeleton) -> SkeletonTable:
+    return SkeletonTable(
+        upper_arm=skeleton.upper_arm,
+        origin_to_elbow=skeleton.origin_to_elbow,
+        elbow_to_insertion=skeleton.elbow_to_insertion,
+        forearm=skeleton.forearm,
+        flexion_range=(skeleton.min_flexion, skeleton.max_flexion),
+    )
+
+
+def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm) -> None:
+    """The current shape becomes the file's rest shape, at the current length.
+
+    Values are changed in place where the node count is the same, so the comments beside
+    the nodes survive; a different count rewrites the list.
+    """
+    muscle = arm.muscle
+    table = document["muscle"]
+    # Plain floats print their shortest exact form, so load -> save -> load is exact.
+    radii = muscle.radii.tolist()
+    growth = muscle.growth.tolist()
+    if "nodes" in table:
+        _update_list(table, "nodes", [[r, m] for r, m in zip(radii, growth)])
+    else:
+        _update_list(table, "radius", radii)
+        _update_list(table, "growth", growth)
+    if "flexion" in table:
+        _update_value(table, "flexion", arm.flexion)
+    else:
+        _update_value(table, "length", muscle.length)
+    if table.get("volume", "closed") != muscle.volume_mode:
+        table["volume"] = muscle.volume_mode
+
+
+def _update_list(table: Any, key: str, values: list) -> None:
+    current = table[key]
+    if len(current) != len(values):
+        array = tomlkit.array()
+        array.extend(values)
+        table[key] = array.multiline("\n" in current.as_string())
+        return
+    for index, value in enumerate(values):
+        if isinstance(value, list):
+            for inner, item in enumerate(value):
+                _update_value(current[index], inner, item)
+        else:
+            _update_value(current, index, value)
+
+
+def _update_value(container: Any, key: Any, value: float) -> None:
+    if container[key] != value:
+        container[key] = value
+
+
+def _write_changes(document: tomlkit.TOMLDocument, name: str, default: BaseModel,
+                   value: BaseModel) -> None:
+    existing = document.get(name)
+    for field in type(value).model_fields:
+        new = getattr(value, field)
+        current = existing.get(field, getattr(default, field)) if existing else getattr(default, field)
+        if _same(current, new):
+            continue
+        if existing is None:
+            existing = document[name] = tomlkit.table()
+        existing[field] = list(new) if isinstance(new, tuple) else new
+
+
+def _same(a: Any, b: Any) -> bool:
+    if isinstance(a, (list, tuple)) or isinstance(b, (list, tuple)):
+        return list(a) == list(b)
+    return a == b
+

@@ -1,0 +1,17 @@
+"""The errors the engine raises on purpose, each carrying a message a person can act on."""
+
+
+class BicepsError(Exception):
+    """Base of every deliberate refusal: the message is meant for the user as it is."""
+
+
+class RefusedChange(BicepsError):
+    """A change to the model was refused; the model is left exactly as it was."""
+
+
+class ConfigError(BicepsError):
+    """A configuration file cannot be read, validated or written."""
+
+
+class FileError(BicepsError):
+    """A file cannot be written; whatever was there before is untouched."""

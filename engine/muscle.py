@@ -1,0 +1,346 @@
+"""The muscle: a chain of frusta whose volume stays exactly constant as its length changes.
+
+A muscle is ``n >= 2`` nodes equally spaced along its axis, node ``i`` with a radius
+``r_i > 0`` and a growth coefficient ``m_i >= 0``. Changing the length from ``L`` to ``L'``
+moves every radius by one step ``d`` scaled by its growth, ``r_i' = r_i + m_i d``, where
+``d`` keeps the volume (SPEC 2.2). The volume is a cubic in ``d`` (a quadratic without the
+end caps), strictly increasing where every radius is positive, so the root is unique.
+
+The state is a function of the length alone: every length is solved from the reference
+(rest) shape, never from the previous step, so no sequence of changes can drift. Editing a
+node makes the edited current shape the new reference. A :class:`Muscle` is immutable;
+every change returns a new one or raises :class:`RefusedChange` and leaves this one as is.
+
+Node numbers in messages are 1-based, as a person counts them in the node table.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Literal
+
+import numpy as np
+
+from engine.errors import RefusedChange
+
+VolumeMode = Literal["closed", "frusta"]
+VOLUME_MODES: tuple[VolumeMode, ...] = ("closed", "frusta")
+
+_NEWTON_MAX_STEPS = 200
+
+
+def frusta_sum(radii: np.ndarray) -> float:
+    """``Q(R) = sum (r_i^2 + r_i r_{i+1} + r_{i+1}^2) / 3``: the frusta volume over ``pi dx``.
+
+    radii: (n,) float64.
+    """
+    left, right = radii[:-1], radii[1:]
+    return float(np.sum(left * left + left * right + right * right)) / 3.0
+
+
+def volume(radii: np.ndarray, length: float, mode: VolumeMode = "closed") -> float:
+    """The volume (cm^3) of the solid of revolution of the profile ``radii`` over ``length``.
+
+    ``frusta`` is the stack of truncated cones alone (the seed's definition); ``closed``
+    adds the two hemispherical end caps, which is what is drawn.
+    """
+    dx = length / (len(radii) - 1)
+    over_pi = dx * frusta_sum(radii)
+    if mode == "closed":
+        over_pi += 2.0 / 3.0 * (radii[0] ** 3 + radii[-1] ** 3)
+    return float(np.pi * over_pi)
+
+
+def _read_only(values: np.ndarray) -> np.ndarray:
+    values = np.array(values, dtype=np.float64)
+    values.flags.writeable = False
+    return values
+
+
+@dataclass(frozen=True)
+class _VolumeLaw:
+    """The volume over ``pi`` as a polynomial in the step ``d``, for a given spacing ``dx``.
+
+    ``V(d) / pi = dx (a d^2 + b d + c) + caps(d)``, with ``caps(d) = 2/3 ((r_1 + m_1 d)^3 +
+    (r_n + m_n d)^3)`` in the closed mode and zero otherwise. The coefficients depend only on
+    the reference shape, so a length change costs O(1) plus the O(n) update of the radii.
+    """
+
+    a: float
+    b: float
+    c: float
+    ends: tuple[tuple[float, float], ...]  # (radius, growth) of each capped end; none if frusta
+    lowest_step: float  # the step at which the first radius with growth reaches zero
+    first_to_vanish: int  # the index of that node
+
+    @classmethod
+    def of(cls, radii: np.ndarray, growth: np.ndarray, closed: bool) -> _VolumeLaw:
+        r0, r1 = radii[:-1], radii[1:]
+        m0, m1 = growth[:-1], growth[1:]
+        # Expanding (r_i + m_i d)^2 + (r_i + m_i d)(r_j + m_j d) + (r_j + m_j d)^2, the
+        # frustum formula with the stepped radii (SPEC 2.2; the seed's A and B are wrong).
+        a = float(np.sum(m0 * m0 + m0 * m1 + m1 * m1)) / 3.0
+        b = float(np.sum(2 * r0 * m0 + r0 * m1 + r1 * m0 + 2 * r1 * m1)) / 3.0
+        c = frusta_sum(radii)
+        growing = growth > 0
+        limits = np.full(len(radii), -np.inf)
+        # A vanishingly small growth overflows to -inf: that node never reaches zero.
+        with np.errstate(over="ignore"):
+            limits[growing] = -radii[growing] / growth[growing]
+        first = int(np.argmax(limits))
+        # Plain floats: the solver evaluates these a few times per change, and numpy's
+        # per-call overhead on two-element arrays would dominate it.
+        ends = ((float(radii[0]), float(growth[0])), (float(radii[-1]), float(growth[-1])))
+        return cls(a, b, c, ends if closed else (), float(limits[first]), first)
+
+    def over_pi(self, step: float, dx: float) -> float:
+        return dx * ((self.a * step + self.b) * step + self.c) + self.caps(step)
+
+    def slope(self, step: float, dx: float) -> float:
+        """The derivative of :meth:`over_pi` with respect to the step."""
+        caps = sum(2.0 * m * (r + m * step) ** 2 for r, m in self.ends)
+        return dx * (2.0 * self.a * step + self.b) + caps
+
+    def caps(self, step: float) -> float:
+        return 2.0 / 3.0 * sum((r + m * step) ** 3 for r, m in self.ends)
+
+    def solve(self, target: float, dx: float) -> float | None:
+        """The step ``d`` with ``over_pi(d, dx) == target`` and every radius positive.
+
+        ``None`` when there is none (the muscle would have to thin past zero). In terms of
+        ``t = d - lowest_step`` every stepped radius is a linear function with non-negative
+        coefficients, so ``over_pi`` is increasing and convex on the feasible interval; Newton's
+        method started right of the root then falls monotonically onto it and cannot overshoot.
+        """
+        if self.over_pi(self.lowest_step, dx) >= target:
+            return None
+        step = 0.0
+        excess = self.over_pi(step, dx) - target
+        if excess < 0:
+            # b, c and the caps only grow for d >= 0, so dx a d^2 >= -excess is enough.
+            step = float(np.sqrt(-excess / (dx * self.a)))
+            excess = self.over_pi(step, dx) - target
+        for _ in range(_NEWTON_MAX_STEPS):
+            if excess <= 0:
+                break
+            next_step = step - excess / self.slope(step, dx)
+            if not next_step < step:  # converged to the last representable point
+                break
+            step = next_step
+            excess = self.over_pi(step, dx) - target
+        return step
+
+    def longest(self, target: float, segments: int) -> float:
+        """The length at which the first growing radius reaches zero (``inf`` if never)."""
+        step = self.lowest_step
+        spaced = (self.a * step + self.b) * step + self.c
+        room = target - self.caps(step)
+        if spaced <= 0 or room <= 0:
+            return float("inf")
+        return segments * room / spaced
+
+
+@dataclass(frozen=True, eq=False)
+class Muscle:
+    """A muscle at some length, together with the reference shape it is solved from.
+
+    Build one with :meth:`Muscle.of`. ``radii`` are the current radii (cm), ``growth`` the
+    growth coefficients, ``length`` the current length (cm); the reference is the shape whose
+    volume is conserved.
+    """
+
+    reference_radii: np.ndarray  # (n,) float64, read-only
+    growth: np.ndarray  # (n,) float64, read-only
+    reference_length: float
+    volume_mode: VolumeMode
+    length: float
+    radii: np.ndarray  # (n,) float64, read-only
+    step: float  # the d of SPEC 2.2 that takes the reference to this length
+
+    @classmethod
+    def of(
+        cls,
+        radii: np.ndarray | list[float],
+        growth: np.ndarray | list[float],
+        length: float,
+        volume_mode: VolumeMode = "closed",
+    ) -> Muscle:
+        """A muscle at rest with this profile; raises :class:`RefusedChange` if invalid."""
+        radii = _read_only(radii)
+        growth = _read_only(growth)
+        _check_profile(radii, growth, length, volume_mode)
+        return cls(radii, growth, float(length), volume_mode, float(length), radii, 0.0)
+
+    @property
+    def node_count(self) -> int:
+        return len(self.radii)
+
+    @property
+    def spacing(self) -> float:
+        return self.length / (self.node_count - 1)
+
+    @property
+    def positions(self) -> np.ndarray:
+        """(n,) float64: each node's distance (cm) from the muscle's origin."""
+        return np.linspace(0.0, self.length, self.node_count)
+
+    @property
+    def volume(self) -> float:
+        """The volume (cm^3) of the current shape, computed directly from its radii."""
+        return volume(self.radii, self.length, self.volume_mode)
+
+    @cached_property
+    def reference_volume(self) -> float:
+        """The volume (cm^3) every length change conserves."""
+        return volume(self.reference_radii, self.reference_length, self.volume_mode)
+
+    @property
+    def volume_error(self) -> float:
+        """Relative difference between the current and the conserved volume."""
+        return abs(self.volume - self.reference_volume) / self.reference_volume
+
+    @property
+    def max_radius(self) -> float:
+        return float(self.radii.max())
+
+    @property
+    def girth(self) -> float:
+        """The circumference (cm) at the thickest node."""
+        return 2.0 * np.pi * self.max_radius
+
+    @cached_property
+    def _law(self) -> _VolumeLaw:
+        return _VolumeLaw.of(self.reference_radii, self.growth, self.volume_mode == "closed")
+
+    @cached_property
+    def longest_length(self) -> float:
+        """The length (cm) at which a radius would reach zero; ``inf`` if none ever does."""
+        return self._law.longest(self.reference_volume / np.pi, self.node_count - 1)
+
+    def at_length(self, length: float) -> Muscle:
+        """This muscle contracted or stretched to ``length`` (cm) at the same volume."""
+        length = float(length)
+        if not np.isfinite(length) or length <= 0:
+            raise RefusedChange(f"length must be a positive number of cm, got {length}")
+        if length == self.length:
+            return self
+        dx = length / (self.node_count - 1)
+        step = self._law.solve(self.reference_volume / np.pi, dx)
+        if step is None:
+            raise RefusedChange(self._too_long_message(length))
+        radii = self.reference_radii + step * self.growth
+        if not np.isfinite(step) or not np.all(np.isfinite(radii)):
+            raise RefusedChange(
+                f"cannot reach {length:.2f} cm: the growth coefficients are too small to keep "
+                "the volume"
+            )
+        if radii.min() <= 0:
+            raise RefusedChange(self._too_long_message(length))
+        radii.flags.writeable = False
+        return Muscle(
+            self.reference_radii, self.growth, self.reference_length, self.volume_mode,
+            length, radii, step,
+        )  # fmt: skip
+
+    def _too_long_message(self, length: float) -> str:
+        node = self._law.first_to_vanish + 1
+        return (
+            f"cannot stretch to {length:.2f} cm: node {node}'s radius would fall to zero "
+            f"at {self.longest_length:.2f} cm, the longest this muscle can be"
+        )
+
+    def with_radius(self, index: int, radius: float) -> Muscle:
+        """The current shape with node ``index`` (0-based) at ``radius`` cm, as a new rest."""
+        self._check_index(index)
+        radii = self.radii.copy()
+        radii[index] = radius
+        return self._redefined(radii, self.growth)
+
+    def with_growth(self, index: int, growth: float) -> Muscle:
+        """The current shape with node ``index`` (0-based) growing by ``growth``, as a new rest."""
+        self._check_index(index)
+        coefficients = self.growth.copy()
+        coefficients[index] = growth
+        return self._redefined(self.radii, coefficients)
+
+    def with_node_inserted(self, index: int) -> Muscle:
+        """A new node between ``index`` and ``index + 1`` with their mean radius and growth.
+
+        The nodes stay equally spaced over the same length, so the profile and the volume
+        change: the result is a new rest shape.
+        """
+        if not 0 <= index < self.node_count - 1:
+            raise RefusedChange(
+                f"a node goes between two neighbours: pick node 1 to {self.node_count - 1}, "
+                f"not {index + 1}"
+            )
+        radii = np.insert(self.radii, index + 1, self.radii[index : index + 2].mean())
+        growth = np.insert(self.growth, index + 1, self.growth[index : index + 2].mean())
+        return self._redefined(radii, growth)
+
+    def without_node(self, index: int) -> Muscle:
+        """The muscle with node ``index`` removed (the rest stay equally spaced)."""
+        self._check_index(index)
+        if self.node_count <= 2:
+            raise RefusedChange("a muscle needs at least 2 nodes; this one has 2")
+        return self._redefined(np.delete(self.radii, index), np.delete(self.growth, index))
+
+    def subdivided(self) -> Muscle:
+        """A node at the middle of every segment, with the mean of its neighbours.
+
+        The profile is a straight segment between nodes, so the midpoint lies on it: the
+        shape and the volume are unchanged.
+        """
+        count = 2 * self.node_count - 1
+        radii = np.empty(count)
+        growth = np.empty(count)
+        radii[0::2], growth[0::2] = self.radii, self.growth
+        radii[1::2] = (self.radii[:-1] + self.radii[1:]) / 2
+        growth[1::2] = (self.growth[:-1] + self.growth[1:]) / 2
+        return self._redefined(radii, growth)
+
+    def with_volume_mode(self, mode: VolumeMode) -> Muscle:
+        """The current shape as a new rest, conserving the ``closed`` or ``frusta`` volume."""
+        return Muscle.of(self.radii, self.growth, self.length, mode)
+
+    def _redefined(self, radii: np.ndarray, growth: np.ndarray) -> Muscle:
+        return Muscle.of(radii, growth, self.length, self.volume_mode)
+
+    def _check_index(self, index: int) -> None:
+        if not 0 <= index < self.node_count:
+            raise RefusedChange(f"there is no node {index + 1}: nodes are 1 to {self.node_count}")
+
+
+def _check_profile(
+    radii: np.ndarray, growth: np.ndarray, length: float, volume_mode: str
+) -> None:
+    if radii.ndim != 1 or len(radii) < 2:
+        raise RefusedChange(f"a muscle needs at least 2 nodes, got {radii.size}")
+    if growth.shape != radii.shape:
+        raise RefusedChange(
+            f"every node needs a radius and a growth: {len(radii)} radii, {growth.size} growths"
+        )
+    for name, values in (("radius", radii), ("growth", growth)):
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            raise RefusedChange(f"node {bad[0] + 1}: {name} must be a number, got {values[bad[0]]}")
+    bad = np.flatnonzero(radii <= 0)
+    if bad.size:
+        raise RefusedChange(
+            f"node {bad[0] + 1}: radius must be above 0 cm, got {radii[bad[0]]:g}"
+        )
+    bad = np.flatnonzero(growth < 0)
+    if bad.size:
+        raise RefusedChange(
+            f"node {bad[0] + 1}: growth must be 0 or more, got {growth[bad[0]]:g}"
+        )
+    if not np.any(growth > 0):
+        raise RefusedChange(
+            "at least one node needs a growth above 0, or the muscle cannot change length "
+            "at constant volume"
+        )
+    if not np.isfinite(length) or length <= 0:
+        raise RefusedChange(f"length must be above 0 cm, got {length}")
+    if volume_mode not in VOLUME_MODES:
+        raise RefusedChange(f"volume mode must be 'closed' or 'frusta', got {volume_mode!r}")

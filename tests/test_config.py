@@ -1,0 +1,194 @@
+"""Configuration files: the bundled ones load, bad ones are refused clearly, saving is safe."""
+
+import stat
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from engine.cli import main
+from engine.config import load_config, save_config
+from engine.errors import ConfigError, FileError
+
+CONFIGS = Path(__file__).resolve().parent.parent / "configs"
+INVALID = Path(__file__).resolve().parent / "invalid_configs"
+
+# Each broken file, and what the message must say about it.
+INVALID_CASES = {
+    "all_zero_growth.toml": ":3: muscle.nodes: at least one node needs a growth above 0",
+    "bad_colour.toml": ":6: render.muscle_colour: should be a colour written #rrggbb (found 'red')",
+    "bad_shading.toml": ":6: render.shading: Input should be 'gouraud' or 'phong' (found 'flat')",
+    "binary_junk.toml": "not a text file",
+    "boolean_scale.toml": ":6: view.scale: Input should be a valid number (found True)",
+    "broken_toml.toml": "not valid TOML",
+    "empty.toml": "the [muscle] table is required, but missing",
+    "flexion_outside_range.toml": ":2: muscle.flexion: 150 degrees is outside",
+    "fractional_segments.toml": ":6: render.segments: Input should be a valid integer (found 48.5)",
+    "infinite_length.toml": ":2: muscle.length: Input should be a finite number (found inf)",
+    "length_and_flexion.toml": "give exactly one of length (cm) and flexion (degrees)",
+    "length_outside_range.toml": ":3: muscle.length: length 50.00 cm is outside",
+    "light_position_short.toml": ":6: light.position[2]: required",
+    "limits_leave_nothing.toml": "muscle.min_length: the limits leave no length",
+    "mismatched_lists.toml": "radius has 3 values but growth has 2",
+    "missing_muscle.toml": "the [muscle] table is required, but missing",
+    "muscle_not_a_table.toml": ":1: muscle: Input should be a valid dictionary",
+    "nan_radius.toml": ":3: muscle.radius[1]: Input should be a finite number (found nan)",
+    "negative_bone.toml": ":6: skeleton.forearm: Input should be greater than 0 (found -3.0)",
+    "negative_growth.toml": "muscle.nodes[1][1]: Input should be greater than or equal to 0",
+    "negative_radius.toml": ":3: muscle.nodes[2][0]: Input should be greater than 0 (found -0.5)",
+    "no_length.toml": "give exactly one of length (cm) and flexion (degrees)",
+    "nodes_and_lists.toml": "either as nodes or as radius and growth, not both",
+    "one_node.toml": "muscle.nodes: a muscle needs at least 2 nodes, got 1",
+    "reversed_flexion_range.toml": ":6: skeleton.flexion_range: flexion range must satisfy",
+    "string_radius.toml": ":3: muscle.radius[0]: Input should be a valid number (found '0.5')",
+    "three_value_node.toml": "muscle.nodes[1]: Tuple should have at most 2 items",
+    "unknown_key.toml": ":2: muscle.lenght: unknown key 'lenght' (did you mean 'length'?)",
+    "unknown_table.toml": ":5: camera: unknown key 'camera'",
+    "wrong_type_length.toml": ":2: muscle.length: Input should be a valid number (found 'thirty')",
+    "wrong_volume_mode.toml": ":2: muscle.volume: Input should be 'closed' or 'frusta' (found 'open')",
+    "zero_radius.toml": ":3: muscle.radius[1]: Input should be greater than 0 (found 0.0)",
+}
+
+
+def test_every_invalid_config_has_an_expected_message():
+    assert sorted(INVALID_CASES) == sorted(p.name for p in INVALID.iterdir())
+
+
+@pytest.mark.parametrize("name", sorted(INVALID_CASES))
+def test_info_refuses_an_invalid_config_with_a_clear_message(name):
+    path = INVALID / name
+    result = CliRunner().invoke(main, ["info", str(path)])
+    assert result.exit_code == 2
+    assert result.stdout == ""
+    assert result.stderr.startswith(f"biceps: {path}")
+    assert INVALID_CASES[name] in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+@pytest.mark.parametrize("name", ["binary_junk.toml", "broken_toml.toml", "unknown_key.toml"])
+def test_a_real_process_prints_no_traceback(name):
+    process = subprocess.run(
+        [sys.executable, "-m", "engine.cli", "info", str(INVALID / name)],
+        capture_output=True, text=True, timeout=60,
+    )
+    assert process.returncode == 2
+    assert process.stderr.count("\n") == 1
+    assert "Traceback" not in process.stderr
+
+
+@pytest.mark.parametrize("name", ["biceps.toml", "toy.toml", "fine.toml"])
+def test_bundled_configs_load(name):
+    config = load_config(CONFIGS / name)
+    assert config.arm.muscle.volume_error == 0.0
+
+
+def test_default_config_is_a_realistic_biceps():
+    arm = load_config(CONFIGS / "biceps.toml").arm
+    assert 150 <= arm.muscle.volume <= 250
+    assert arm.muscle.growth[0] == arm.muscle.growth[-1] == 0
+    shortest, longest = arm.length_range()
+    assert shortest == pytest.approx(27.05, abs=0.01) and longest == pytest.approx(35.6)
+    assert 12 <= np.pi * arm.muscle.max_radius**2 <= 15  # mid-arm cross-section, cm^2
+
+
+def test_fine_config_has_60_nodes_and_toy_has_4():
+    assert load_config(CONFIGS / "fine.toml").arm.muscle.node_count == 60
+    assert load_config(CONFIGS / "toy.toml").arm.muscle.node_count == 4
+
+
+def test_flexion_sets_the_length(tmp_path):
+    path = tmp_path / "flexed.toml"
+    path.write_text("[muscle]\nflexion = 90.0\nnodes = [[0.5, 0.0], [2.0, 1.0], [0.5, 0.0]]\n")
+    arm = load_config(path).arm
+    assert arm.flexion == pytest.approx(90.0)
+
+
+def _save(config, arm=None, path=None, **settings):
+    return save_config(
+        config, arm or config.arm, settings.get("view", config.view),
+        settings.get("light", config.light), settings.get("render", config.render), path,
+    )
+
+
+@pytest.fixture
+def user_copy(tmp_path) -> Path:
+    path = tmp_path / "mine.toml"
+    path.write_text((CONFIGS / "biceps.toml").read_text())
+    return path
+
+
+def test_save_then_load_gives_the_same_model(user_copy):
+    config = load_config(user_copy)
+    edited = config.arm.at_length(30.0)
+    edited = edited.with_muscle(edited.muscle.with_radius(7, 2.5).subdivided())
+    saved = _save(config, edited)
+    again = load_config(user_copy)
+    assert np.array_equal(again.arm.muscle.radii, edited.muscle.radii)
+    assert np.array_equal(again.arm.muscle.growth, edited.muscle.growth)
+    assert again.arm.length == edited.length
+    assert again.arm.muscle.volume == pytest.approx(edited.muscle.volume, rel=1e-12)
+    assert saved.source == user_copy.read_text()
+
+
+def test_saving_keeps_the_users_comments_and_layout(user_copy):
+    config = load_config(user_copy)
+    _save(config, config.arm.at_length(31.0), view=config.view.model_copy(update={"yaw": 40.0}))
+    text = user_copy.read_text()
+    assert "# A human biceps brachii on the arm skeleton of OpenSim's arm26 model." in text
+    assert "upper_arm = 29.1            # humerus, elbow to shoulder" in text
+    assert "length = 31.0" in text
+    assert "yaw = 40.0" in text
+    assert "nodes = [\n" in text  # still one node per line
+    assert "# proximal tendon" in text and "# distal tendon, on the radius" in text
+
+
+def test_saving_unchanged_writes_the_same_text(user_copy):
+    before = user_copy.read_text()
+    _save(load_config(user_copy))
+    assert user_copy.read_text() == before
+
+
+def test_saving_writes_only_what_differs_from_the_defaults(tmp_path):
+    path = tmp_path / "short.toml"
+    path.write_text("[muscle]\nlength = 33.0\nradius = [0.5, 2.0, 0.5]\ngrowth = [0, 1, 0]\n")
+    config = load_config(path)
+    _save(config, light=config.light.model_copy(update={"position": (1.0, 2.0, 3.0)}))
+    text = path.read_text()
+    assert "[light]\nposition = [1.0, 2.0, 3.0]" in text
+    assert "[view]" not in text and "[render]" not in text
+    assert load_config(path).light.position == (1.0, 2.0, 3.0)
+
+
+def test_save_as_writes_a_new_file_and_leaves_the_original(user_copy, tmp_path):
+    before = user_copy.read_text()
+    config = load_config(user_copy)
+    other = tmp_path / "other.toml"
+    saved = _save(config, config.arm.at_length(29.0), path=other)
+    assert saved.path == other
+    assert user_copy.read_text() == before
+    assert load_config(other).arm.length == pytest.approx(29.0)
+
+
+def test_a_failed_save_leaves_the_file_and_no_temporary(user_copy):
+    before = user_copy.read_text()
+    config = load_config(user_copy)
+    missing_dir = user_copy.parent / "no" / "such" / "dir" / "x.toml"
+    with pytest.raises(FileError, match="cannot write"):
+        _save(config, config.arm.at_length(29.0), path=missing_dir)
+    assert user_copy.read_text() == before
+    assert [p.name for p in user_copy.parent.iterdir()] == [user_copy.name]
+
+
+def test_saving_keeps_the_files_permissions(user_copy):
+    user_copy.chmod(0o640)
+    config = load_config(user_copy)
+    _save(config, config.arm.at_length(29.0))
+    assert stat.S_IMODE(user_copy.stat().st_mode) == 0o640
+
+
+def test_a_missing_file_is_a_config_error(tmp_path):
+    with pytest.raises(ConfigError, match="no such file"):
+        load_config(tmp_path / "nope.toml")
