@@ -1,0 +1,346 @@
+"""Triangle meshes of the muscle and the bones, built as surfaces of revolution.
+
+Every shape here is one profile revolved about an axis: a column of points ``(x, r)``
+(distance along the axis, distance from it) with the outward normal ``(nx, nr)`` of the
+profile at each point. The first and last points lie on the axis and become single pole
+vertices; every other point becomes a ring of ``segments`` vertices. Revolving such a
+profile gives one closed, watertight, consistently wound surface, and that one routine
+(`_revolve`) makes the muscle, the bones and the elbow.
+
+Vertices are ordered from the start pole, ring by ring along the profile, to the end pole.
+"""
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+DEFAULT_SEGMENTS = 48
+"""Vertices around the axis: a 48-gon keeps 99.7 % of its circle's area (k sin(2 pi/k) / 2 pi)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Mesh:
+    """A triangle mesh as structure-of-arrays.
+
+    vertices: (n, 3) float64 points.
+    normals: (n, 3) float64 unit vertex normals.
+    triangles: (m, 3) int32 vertex indices, counter-clockwise seen from outside.
+
+    The arrays are read-only views, so a mesh can share its topology with others.
+    """
+
+    vertices: np.ndarray
+    normals: np.ndarray
+    triangles: np.ndarray
+
+    def __post_init__(self):
+        dtypes = {"vertices": np.float64, "normals": np.float64, "triangles": np.int32}
+        for name, dtype in dtypes.items():
+            array = np.asarray(getattr(self, name), dtype=dtype).view()
+            if array.ndim != 2 or array.shape[1] != 3:
+                raise ValueError(f"{name} must have shape (k, 3), got {array.shape}")
+            array.flags.writeable = False
+            object.__setattr__(self, name, array)
+        if self.normals.shape != self.vertices.shape:
+            raise ValueError(
+                f"normals {self.normals.shape} must match vertices {self.vertices.shape}"
+            )
+
+    @staticmethod
+    def concatenate(meshes) -> "Mesh":
+        """One mesh holding all of ``meshes`` (an iterable of Mesh), indices offset to match."""
+        meshes = list(meshes)
+        if not meshes:
+            return Mesh(np.empty((0, 3)), np.empty((0, 3)), np.empty((0, 3), np.int32))
+        offsets = np.cumsum([0] + [len(mesh.vertices) for mesh in meshes[:-1]])
+        return Mesh(
+            np.concatenate([mesh.vertices for mesh in meshes]),
+            np.concatenate([mesh.normals for mesh in meshes]),
+            np.concatenate([mesh.triangles + offset for mesh, offset in zip(meshes, offsets)]),
+        )
+
+    def transformed(self, matrix) -> "Mesh":
+        """This mesh moved by an affine ``matrix`` (4, 4) acting on column vectors.
+
+        Normals go through the inverse transpose (so they stay perpendicular to the surface
+        under non-uniform scaling) and are renormalised. A mirroring matrix (negative
+        determinant) would turn the surface inside out, so the winding is reversed with it.
+        """
+        matrix = np.asarray(matrix, dtype=np.float64)
+        linear, shift = matrix[:3, :3], matrix[:3, 3]
+        # Row vectors: (A^-T n)^T = n^T A^-1.
+        normals = self.normals @ np.linalg.inv(linear)
+        normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+        triangles = self.triangles if np.linalg.det(linear) > 0 else self.triangles[:, ::-1]
+        return Mesh(self.vertices @ linear.T + shift, normals, triangles)
+
+
+def muscle_mesh(
+    radii,
+    length: float,
+    start,
+    end,
+    segments: int = DEFAULT_SEGMENTS,
+    caps: str = "round",
+    cap_rings: int | None = None,
+) -> Mesh:
+    """The muscle's surface: frusta through the node rings, closed at both ends.
+
+    radii: (n,) float64, n >= 2, the node radii, all positive; node 0 sits on ``start``,
+        node n-1 at ``length`` from it in the direction of ``end``, nodes equally spaced.
+    start, end: (3,) float64, the muscle's origin and insertion.
+    caps: "round" closes each end with a hemisphere of the end node's radius (the solid
+        whose volume the model conserves); "flat" with a disk (the frusta alone).
+    cap_rings: latitude rings per hemisphere, counting the end node's ring, so also the
+        number of bands from that ring to the pole; default ``segments / 4`` (at least 2),
+        which makes the caps' facets about as wide as they are tall.
+
+    Rings: ``n`` (flat) or ``n + 2 (cap_rings - 1)`` (round); triangles: twice ``segments``
+    times the number of rings.
+    """
+    radii = _positive_radii(radii)
+    if len(radii) < 2:
+        raise ValueError(f"a muscle needs at least 2 nodes, got {len(radii)}")
+    _check_segments(segments)
+    length = float(length)
+    if not (math.isfinite(length) and length > 0):
+        raise ValueError(f"length must be positive, got {length}")
+    axis = _unit_axis(start, end)
+    body = _muscle_body(radii, length, caps)
+    if caps == "flat":
+        profile = np.concatenate([[[0.0, 0.0, -1.0, 0.0]], body, [[length, 0.0, 1.0, 0.0]]])
+    else:
+        sin, cos = _quarter_circle(_cap_rings(segments, cap_rings))
+        # Elevations from the equator (excluded: it is the end node's ring) to the pole.
+        profile = np.concatenate([
+            _arc(0.0, radii[0], -sin[:0:-1], cos[:0:-1]),
+            body,
+            _arc(length, radii[-1], sin[1:], cos[1:]),
+        ])
+    return _revolve(profile, np.asarray(start, dtype=np.float64), axis, segments)
+
+
+def cylinder_mesh(
+    start, end, radius: float, segments: int = DEFAULT_SEGMENTS, caps: str = "round"
+) -> Mesh:
+    """A closed rod of ``radius`` from ``start`` to ``end`` ((3,) float64 each).
+
+    With round caps the rod ends in hemispheres centred on ``start`` and ``end``.
+    """
+    length = np.linalg.norm(np.subtract(end, start, dtype=np.float64))
+    return muscle_mesh(np.full(2, float(radius)), length, start, end, segments, caps)
+
+
+def sphere_mesh(center, radius: float, segments: int = DEFAULT_SEGMENTS) -> Mesh:
+    """A UV sphere: ``segments`` meridians, ``segments / 2`` bands (at least 2), poles on y.
+
+    center: (3,) float64. Every normal is exactly radial.
+    """
+    _check_segments(segments)
+    (radius,) = _positive_radii([radius])
+    bands = max(2, segments // 2)
+    elevations = np.linspace(-np.pi / 2, np.pi / 2, bands + 1)
+    profile = _arc(0.0, radius, np.sin(elevations), np.cos(elevations))
+    center = np.asarray(center, dtype=np.float64)
+    return _revolve(profile, center, np.array([0.0, 1.0, 0.0]), segments)
+
+
+def arm_meshes(
+    shoulder,
+    origin,
+    elbow,
+    insertion,
+    hand,
+    radii,
+    muscle_length: float,
+    segments: int = DEFAULT_SEGMENTS,
+    humerus_radius: float = 1.0,
+    forearm_radius: float = 0.8,
+    elbow_radius: float = 1.4,
+) -> dict[str, Mesh]:
+    """The muscle and the skeleton, in world space: keys "muscle", "humerus", "forearm", "elbow".
+
+    shoulder, origin, elbow, insertion, hand: (3,) float64 points from the skeleton.
+    radii: (n,) float64 node radii; muscle_length: the muscle's length (|insertion - origin|).
+    Radii in centimetres; the defaults are an adult's humerus, forearm and elbow, roughly.
+    """
+    humerus_end = _bone_end(elbow, shoulder, origin)
+    forearm_end = _bone_end(elbow, hand, insertion)
+    return {
+        "muscle": muscle_mesh(radii, muscle_length, origin, insertion, segments),
+        "humerus": cylinder_mesh(elbow, humerus_end, humerus_radius, segments),
+        "forearm": cylinder_mesh(elbow, forearm_end, forearm_radius, segments),
+        "elbow": sphere_mesh(elbow, elbow_radius, segments),
+    }
+
+
+def _bone_end(elbow, free_end, attachment) -> np.ndarray:
+    """The far end of a bone (3,): its free end, or further along the bone to reach the
+    attachment's level, since the muscle's origin may sit beyond the humerus, on the
+    shoulder blade, and a tendon should end on bone."""
+    elbow = np.asarray(elbow, dtype=np.float64)
+    along = np.subtract(free_end, elbow, dtype=np.float64)
+    reach = np.linalg.norm(along)
+    if reach == 0:
+        raise ValueError("a bone's free end coincides with the elbow")
+    direction = along / reach
+    return elbow + direction * max(reach, float(np.dot(np.subtract(attachment, elbow), direction)))
+
+
+def _muscle_body(radii: np.ndarray, length: float, caps: str) -> np.ndarray:
+    """The profile (n, 4) of the node rings: rows ``(x, r, nx, nr)``.
+
+    A frustum's side tilts its normal back by atan(dr/dx); a node's normal is the
+    normalised mean of the two sides that meet there, so shading is smooth across it.
+    """
+    if caps not in ("round", "flat"):
+        raise ValueError(f'caps must be "round" or "flat", got {caps!r}')
+    n = len(radii)
+    slopes = np.diff(radii) / (length / (n - 1))
+    sides = np.empty((n + 1, 2))  # the sides' normals (nx, nr), and the caps' at the ends
+    sides[1:-1, 1] = 1.0 / np.sqrt(1.0 + slopes * slopes)
+    sides[1:-1, 0] = -slopes * sides[1:-1, 1]
+    if caps == "round":
+        # A hemisphere meets the frustum along its equator, where its normal is radial:
+        # averaging that with the side normal is the interior nodes' rule applied to a
+        # neighbour of slope zero, so the shading runs on smoothly into the cap.
+        sides[[0, -1]] = (0.0, 1.0)
+    else:
+        # The rim of a flat cap is a real right-angle edge: its ring keeps the side's exact
+        # normal (the disk then shades like a shallow dome, which only the test mode shows).
+        sides[[0, -1]] = sides[[1, -2]]
+    body = np.empty((n, 4))
+    body[:, 0] = np.arange(n) / (n - 1) * length  # exact at both ends
+    body[:, 1] = radii
+    normals = np.add(sides[:-1], sides[1:], out=body[:, 2:])
+    normals /= np.hypot(normals[:, :1], normals[:, 1:])
+    return body
+
+
+def _arc(x: float, radius: float, sin: np.ndarray, cos: np.ndarray) -> np.ndarray:
+    """The profile (k, 4) of a sphere of ``radius`` centred at ``x`` on the axis, at the
+    elevations whose sines and cosines are ``sin``, ``cos`` (k,) (positive towards +x)."""
+    return np.column_stack([x + radius * sin, radius * cos, sin, cos])
+
+
+@lru_cache(maxsize=64)
+def _quarter_circle(bands: int) -> tuple[np.ndarray, np.ndarray]:
+    """sin and cos (bands + 1,) float64, read-only, of ``bands`` equal steps from 0 to pi/2."""
+    elevations = np.linspace(0.0, np.pi / 2, bands + 1)
+    sin, cos = np.sin(elevations), np.cos(elevations)
+    sin.flags.writeable = cos.flags.writeable = False
+    return sin, cos
+
+
+def _revolve(profile: np.ndarray, start: np.ndarray, axis: np.ndarray, segments: int) -> Mesh:
+    """Revolve ``profile`` (k, 4) of rows ``(x, r, nx, nr)`` about the line through
+    ``start`` (3,) along the unit ``axis`` (3,).
+
+    The first and last rows are the poles (only their ``x`` and the sign of ``nx`` count);
+    the k - 2 rows between them become rings, vertex ``j`` at angle ``2 pi j / segments``
+    counter-clockwise about the axis.
+    """
+    u, w = _ring_frame(axis)
+    cos, sin = _unit_circle(segments)
+    spokes = cos[:, None] * u + sin[:, None] * w  # (segments, 3) unit radial directions
+    x, r, nx, nr = profile[1:-1].T
+    rings = len(x)
+
+    vertices = np.empty((rings * segments + 2, 3))
+    normals = np.empty_like(vertices)
+    ring_vertices = vertices[1:-1].reshape(rings, segments, 3)
+    np.multiply(r[:, None, None], spokes, out=ring_vertices)
+    ring_vertices += (start + x[:, None] * axis)[:, None, :]
+    ring_normals = normals[1:-1].reshape(rings, segments, 3)
+    np.multiply(nr[:, None, None], spokes, out=ring_normals)
+    ring_normals += (nx[:, None] * axis)[:, None, :]
+    (x0, _, nx0, _), (x1, _, nx1, _) = profile[[0, -1]].tolist()
+    vertices[0], vertices[-1] = start + x0 * axis, start + x1 * axis
+    normals[0], normals[-1] = math.copysign(1.0, nx0) * axis, math.copysign(1.0, nx1) * axis
+    return Mesh(vertices, normals, _closed_tube(rings, segments))
+
+
+@lru_cache(maxsize=64)
+def _closed_tube(rings: int, segments: int) -> np.ndarray:
+    """Triangles (2 rings segments, 3) int32, read-only, of ``rings`` rings of ``segments``
+    vertices closed by a pole before and after, laid out as `_revolve` lays them out.
+
+    The topology depends on the two counts only, so every frame reuses it.
+    """
+    start_pole, end_pole = 0, rings * segments + 1
+    j = np.arange(segments)
+    ring = 1 + np.arange(rings)[:, None] * segments  # first vertex of each ring
+    a, b = ring + j, ring + (j + 1) % segments  # the ring closes by wrap-around, not a seam vertex
+    c, d = b + segments, a + segments  # the same two on the next ring
+    # Going from a to b turns counter-clockwise about the axis and from a to d runs along
+    # it, so (a, b, c) and (a, c, d) face away from the axis (right-hand rule).
+    quads = np.stack([a[:-1], b[:-1], c[:-1], a[:-1], c[:-1], d[:-1]], axis=-1).reshape(-1, 3)
+    start_fan = np.stack([np.full(segments, start_pole), b[0], a[0]], axis=-1)
+    end_fan = np.stack([np.full(segments, end_pole), a[-1], b[-1]], axis=-1)
+    triangles = np.concatenate([start_fan, quads, end_fan]).astype(np.int32)
+    triangles.flags.writeable = False
+    return triangles
+
+
+@lru_cache(maxsize=64)
+def _unit_circle(segments: int) -> tuple[np.ndarray, np.ndarray]:
+    """cos and sin (segments,) float64, read-only, of ``2 pi j / segments``."""
+    angles = np.linspace(0.0, 2.0 * np.pi, segments, endpoint=False)
+    cos, sin = np.cos(angles), np.sin(angles)
+    cos.flags.writeable = sin.flags.writeable = False
+    return cos, sin
+
+
+def _ring_frame(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unit vectors u, w (3,) with (axis, u, w) a right-handed orthonormal frame.
+
+    They are the images of +y and +z under the shortest rotation taking +x onto the axis,
+    which varies smoothly with the axis everywhere except at -x. The arm lies in the x-y
+    plane and its muscle runs from the shoulder down to the forearm, never along -x, and
+    for any axis in that plane the rotation is about z: w stays +z, so the rings do not
+    twist at all as the elbow bends.
+    """
+    ax, ay, az = axis.tolist()
+    k = 1.0 + ax
+    if k > 1e-6:
+        u = np.array([-ay, 1.0 - ay * ay / k, -ay * az / k])
+    else:
+        u = np.array([0.0, 1.0, 0.0])  # near -x the rotation is undefined: any normal will do
+    u -= (u @ axis) * axis  # Gram-Schmidt removes the rounding left by the division
+    u /= math.sqrt(u @ u)
+    ux, uy, uz = u.tolist()
+    return u, np.array([ay * uz - az * uy, az * ux - ax * uz, ax * uy - ay * ux])  # axis x u
+
+
+def _unit_axis(start, end) -> np.ndarray:
+    axis = np.subtract(end, start, dtype=np.float64)
+    if axis.shape != (3,):
+        raise ValueError(f"start and end must be points (3,), got shape {axis.shape}")
+    norm = np.linalg.norm(axis)
+    if not (np.isfinite(norm) and norm > 0):
+        raise ValueError(f"start and end must be distinct finite points, got {start} and {end}")
+    return axis / norm
+
+
+def _positive_radii(radii) -> np.ndarray:
+    radii = np.asarray(radii, dtype=np.float64)
+    if radii.ndim != 1 or len(radii) < 1:
+        raise ValueError(f"radii must be a non-empty 1-D array, got shape {radii.shape}")
+    if not np.all(np.isfinite(radii) & (radii > 0)):
+        raise ValueError(f"radii must be positive and finite, got {radii}")
+    return radii
+
+
+def _check_segments(segments: int) -> None:
+    if segments < 3:
+        raise ValueError(f"segments must be at least 3 (a ring needs 3 vertices), got {segments}")
+
+
+def _cap_rings(segments: int, cap_rings: int | None) -> int:
+    if cap_rings is None:
+        return max(2, round(segments / 4))
+    if cap_rings < 1:
+        raise ValueError(f"cap_rings must be at least 1, got {cap_rings}")
+    return cap_rings
