@@ -225,6 +225,9 @@ class Muscle:
             raise RefusedChange(f"length must be a positive number of cm, got {length}")
         if length == self.length:
             return self
+        if length == self.reference_length:  # exactly the rest shape, not a 1e-17 step off it
+            return Muscle(self.reference_radii, self.growth, length, self.volume_mode, length,
+                          self.reference_radii, 0.0)
         dx = length / (self.node_count - 1)
         step = self._law.solve(self.reference_volume / np.pi, dx)
         if step is None:

@@ -261,3 +261,9 @@ def test_subdivision_keeps_the_volume(data):
     muscle = muscle.at_length(length)
     fine = muscle.subdivided()
     assert abs(fine.volume - muscle.volume) / muscle.volume < 1e-12
+
+
+def test_returning_to_the_rest_length_gives_the_rest_shape_exactly(spec_muscle):
+    back = spec_muscle.at_length(29.0).at_length(35.0).at_length(33.0)
+    assert back.step == 0.0
+    assert np.array_equal(back.radii, spec_muscle.radii)
