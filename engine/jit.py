@@ -1,0 +1,37 @@
+"""The one decorator every numba kernel in the engine is compiled with.
+
+``cache=True`` keeps compiled machine code on disk (``__pycache__``), so a new process loads
+the kernels instead of compiling them again; ``nogil=True`` lets a worker thread render
+while the UI thread stays responsive.
+
+Fast-math is on, but only with the flags that cannot change what is drawn:
+
+- ``contract`` (fused multiply-add), ``arcp`` (``x / y`` as ``x * (1 / y)``) and ``afn``
+  (approximate ``sqrt``, ``pow``) change results in the last bits at most. Coverage does
+  not depend on them: it is decided by exact integer edge functions on vertex positions
+  snapped once per vertex (see ``engine/raster.py``), so no fast-math flag can open a crack
+  or draw a shared edge twice.
+- ``nsz`` (ignore the sign of zero) is harmless for depth and colour.
+- Left out: ``nnan`` and ``ninf``, which let the compiler assume there is no NaN or infinity
+  and so delete the very tests that keep a NaN vertex or an infinite coordinate from
+  reaching an integer conversion; and ``reassoc``, which lets the compiler reorder sums, so
+  that the same expression (a clipped vertex shared by two triangles) could come out
+  differently in two places.
+
+``error_model="numpy"``: a division by zero gives an infinity or NaN (which the kernels
+test for) instead of a check and a Python exception on every division in the inner loops.
+"""
+
+import numba
+
+FASTMATH = {"contract", "arcp", "afn", "nsz"}
+
+ngjit = numba.njit(cache=True, nogil=True, fastmath=FASTMATH, error_model="numpy")
+"""``@ngjit``: compile a kernel in nopython mode, cached, without the GIL."""
+
+inline = numba.njit(cache=True, nogil=True, fastmath=FASTMATH, error_model="numpy",
+                    inline="always")
+"""``@inline``: ``@ngjit`` for the few functions called once per triangle or per row of a
+triangle, which numba then inlines into their caller (LLVM does not inline across numba
+functions: the call, with every array passed as a dozen scalars, cost as much as a short
+row of pixels). Inlining lengthens the first compilation, so it is kept to those."""

@@ -1,0 +1,201 @@
+"""Rendering: the :class:`Renderer` owns the buffers and wires the raster kernels together.
+
+A frame is one call of each kernel of ``engine/raster.py``; Python here only composes the
+4x4 matrices and keeps the buffers, allocated once per size and reused.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from engine import raster
+from engine.transforms import Camera, Light, normal_matrix
+
+RASTERIZERS = {
+    "gouraud": raster.rasterize_gouraud,
+    "phong": raster.rasterize_phong,
+    "overdraw": raster.rasterize_overdraw,
+}
+"""Shadings by name. "overdraw" is a debugging view: the red channel counts the triangles
+that cover each pixel (with no depth test)."""
+
+
+class Renderer:
+    """Draws meshes into buffers it keeps from frame to frame.
+
+    Not thread-safe: use one renderer per thread. The kernels release the GIL, so a worker
+    thread can render while another runs the UI.
+    """
+
+    def __init__(self):
+        self._frame: tuple | None = None  # (height, width, ssaa)
+        self._vertex_count = -1
+
+    def render(self, vertices, normals, triangles, albedo, model_matrix, camera: Camera,
+               light: Light, width: int, height: int, shading: str = "gouraud", ssaa: int = 1,
+               background=(0, 0, 0)) -> np.ndarray:
+        """Draw a mesh and return the picture: (height, width, 3) uint8.
+
+        vertices: (n, 3) float64 and normals: (n, 3) float64, model space.
+        triangles: (m, 3) int32, counter-clockwise seen from outside.
+        albedo: (n, 3) float32 in [0, 1], each vertex's colour (so muscle and bones can be
+            one concatenated mesh).
+        model_matrix: (4, 4) float64, model to world space; normals follow by its inverse
+            transpose. The camera and the light are in world space, so the light does not
+            turn with the model.
+        shading: "gouraud" (lit at the vertices), "phong" (lit per pixel, with a specular
+            highlight) or "overdraw" (see ``RASTERIZERS``).
+        ssaa: render at ssaa x ssaa the size and average down (anti-aliasing), 1 for none.
+        background: (r, g, b), 0 to 255.
+
+        The result is a read-only view of the renderer's own buffer: it stays valid until
+        the next call, which overwrites it. Copy it to keep it.
+        """
+        rasterize = RASTERIZERS.get(shading)
+        if rasterize is None:
+            raise ValueError(f"shading must be one of {sorted(RASTERIZERS)}, got {shading!r}")
+        if not (isinstance(ssaa, (int, np.integer)) and ssaa >= 1):
+            raise ValueError(f"ssaa must be a positive integer, got {ssaa!r}")
+        if width < 1 or height < 1:
+            raise ValueError(f"the picture must be at least 1x1 pixels, got {width}x{height}")
+        triangles = _read_only(np.ascontiguousarray(triangles, dtype=np.int32))
+        model = np.ascontiguousarray(model_matrix, dtype=np.float64)
+        _check_mesh(vertices, normals, triangles, albedo)
+        self._reserve_frame(int(height), int(width), int(ssaa))
+        self._reserve_vertices(len(vertices))
+        full_h, full_w = self._depth.shape
+
+        view_projection = camera.projection_matrix(width / height) @ camera.view_matrix()
+        self._transform(vertices, normals, albedo, model, view_projection, full_w, full_h)
+        attributes = self._vertex_attributes(shading, light)
+        lighting = _lighting(light, camera)
+
+        if shading == "overdraw":
+            background = (0, 0, 0)  # the picture counts from zero
+        red, green, blue = (min(max(int(c), 0), 255) for c in background)
+        pixels, depths = self._colour.reshape(-1), self._depth.reshape(-1)
+        raster.clear(pixels, depths, full_w, red, green, blue)
+        rasterize(triangles, self._screen_xy, self._screen_z, self._outcodes, attributes,
+                  lighting, pixels, depths, full_w)
+        if np.bitwise_or.reduce(self._outcodes) & raster.CLIP_MASK:
+            self._draw_clipped(rasterize, triangles, attributes, lighting, full_w, full_h)
+
+        picture = self._colour
+        if ssaa > 1:
+            raster.downsample(pixels, int(ssaa), self._output.reshape(-1), int(width))
+            picture = self._output
+        return _read_only(picture)
+
+    def _transform(self, vertices, normals, albedo, model, view_projection, width, height):
+        """The vertex stage: world positions and normals, clip space, screen positions."""
+        # The kernels take per-vertex arrays component-major (see engine/raster.py).
+        np.copyto(self._vertices, np.asarray(vertices).T)
+        np.copyto(self._normals, np.asarray(normals).T)
+        np.copyto(self._albedo, np.asarray(albedo).T)
+        raster.transform_vertices(self._vertices, self._normals, model, _normal_matrix(model),
+                                  self._world, self._world_normals)
+        raster.project_vertices(self._world, view_projection, width, height, self._clip,
+                                self._screen_xy, self._screen_z, self._outcodes)
+
+    def _vertex_attributes(self, shading: str, light: Light) -> np.ndarray:
+        """What the rasterizer interpolates for ``shading``: (a, n) float64."""
+        if shading == "gouraud":
+            raster.light_vertices(self._world, self._world_normals, self._albedo,
+                                  np.asarray(light.position, dtype=np.float64),
+                                  float(light.ambient), float(light.diffuse), self._colours)
+            return self._colours
+        if shading == "phong":
+            raster.phong_vertices(self._world, self._world_normals, self._albedo,
+                                  self._phong_attributes)
+            return self._phong_attributes
+        return self._no_attributes
+
+    def _draw_clipped(self, rasterize, triangles, attributes, lighting, width, height) -> None:
+        """Draw the triangles that cross a clipping plane: clip them into a small mesh in
+        screen space and rasterize that. Only frames with a vertex outside a clipping plane
+        (the camera close to or inside the model, or a huge scale) get here."""
+        outside = (self._outcodes & raster.CLIP_MASK) != 0
+        crossing = np.count_nonzero(outside[triangles].any(axis=1))
+        room = max(crossing, 1) * raster.MAX_POLYGON
+        out_xy = np.empty((2, room), np.int64)
+        out_z = np.empty(room)
+        out_attributes = np.empty((attributes.shape[0], room))
+        out_triangles = np.empty((room, 3), np.int32)
+        counts = np.zeros(2, np.int64)
+        raster.clip_triangles(triangles, self._clip, self._screen_xy, self._screen_z,
+                              self._outcodes, attributes, width, height, out_xy, out_z,
+                              out_attributes, out_triangles, counts)
+        inside = np.zeros(room, np.uint8)  # every outcode 0: the clipper did its work
+        rasterize(_read_only(out_triangles[:counts[1]]), out_xy, out_z, inside, out_attributes,
+                  lighting, self._colour.reshape(-1), self._depth.reshape(-1), width)
+
+    def _reserve_frame(self, height: int, width: int, ssaa: int) -> None:
+        """(Re)allocate the frame buffers when the size or the supersampling changes."""
+        if self._frame == (height, width, ssaa):
+            return
+        self._colour = np.empty((height * ssaa, width * ssaa, 3), np.uint8)
+        self._depth = np.empty((height * ssaa, width * ssaa), np.float32)
+        self._output = np.empty((height, width, 3), np.uint8) if ssaa > 1 else None
+        self._frame = (height, width, ssaa)
+
+    def _reserve_vertices(self, count: int) -> None:
+        """(Re)allocate the per-vertex buffers when the vertex count changes."""
+        if self._vertex_count == count:
+            return
+        self._vertices = np.empty((3, count))
+        self._normals = np.empty((3, count))
+        self._albedo = np.empty((3, count), np.float32)
+        self._world = np.empty((3, count))
+        self._world_normals = np.empty((3, count))
+        self._clip = np.empty((4, count))
+        self._screen_xy = np.empty((2, count), np.int64)
+        self._screen_z = np.empty(count)
+        self._outcodes = np.empty(count, np.uint8)
+        self._colours = np.empty((3, count))
+        self._phong_attributes = np.empty((9, count))
+        self._no_attributes = np.empty((0, count))
+        self._vertex_count = count
+
+
+def _read_only(array: np.ndarray) -> np.ndarray:
+    """A read-only view of ``array``: so the caller cannot write into the renderer's
+    buffers, and so the kernels always see one kind of triangle array (numba compiles a
+    kernel again for read-only arrays, and meshes hold theirs read-only)."""
+    view = array.view()
+    view.flags.writeable = False
+    return view
+
+
+def _lighting(light: Light, camera: Camera) -> np.ndarray:
+    """The rasterize kernels' lighting: (11,) float64, laid out as ``raster.LIGHTING``."""
+    specular, shininess = float(light.specular), max(float(light.shininess), 0.0)
+    if specular <= 0.0:
+        threshold = 2.0  # no highlight at all
+    elif shininess == 0.0:
+        threshold = 0.0
+    else:
+        threshold = (0.5 / (255.0 * specular)) ** (1.0 / shininess)
+    return np.array([*light.position, *camera.eye, light.ambient, light.diffuse, specular,
+                     shininess, threshold], dtype=np.float64)
+
+
+def _normal_matrix(model: np.ndarray) -> np.ndarray:
+    """The normals' matrix (3, 3) for ``model``; zeros if it flattens space (scale 0), which
+    leaves the model lit by the ambient term alone."""
+    try:
+        return normal_matrix(model)
+    except np.linalg.LinAlgError:
+        return np.zeros((3, 3))
+
+
+def _check_mesh(vertices, normals, triangles, albedo) -> None:
+    """Raise ValueError unless the arrays make a mesh the kernels can index safely (they
+    do not check bounds)."""
+    count = len(vertices)
+    for name, array in (("vertices", vertices), ("normals", normals), ("albedo", albedo)):
+        if np.shape(array) != (count, 3):
+            raise ValueError(f"{name} must have shape ({count}, 3), got {np.shape(array)}")
+    if triangles.ndim != 2 or triangles.shape[1] != 3:
+        raise ValueError(f"triangles must have shape (m, 3), got {triangles.shape}")
+    if triangles.size and (triangles.min() < 0 or triangles.max() >= count):
+        raise ValueError(f"triangles index vertices outside 0..{count - 1}")
