@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 import json
+import math
 import sys
 from pathlib import Path
 from typing import Any, Callable
@@ -21,6 +22,10 @@ import click
 from engine.arm import Arm
 from engine.config import DEFAULT_CONFIG, load_config
 from engine.errors import BicepsError
+from engine.export import MESH_FORMATS, check_writable, write_mesh, write_png
+from engine.scene import Scene, SceneRenderer
+
+MAX_SIDE = 16384
 
 USAGE_ERROR = 2
 
@@ -63,11 +68,10 @@ def pose_options(command: Callable) -> Callable:
     return command
 
 
-def posed_arm(config_path: Path, length: float | None, flexion: float | None) -> Arm:
-    """The config's arm, moved to the asked length or flexion if any."""
+def posed(arm: Arm, length: float | None, flexion: float | None) -> Arm:
+    """``arm`` moved to the asked length or flexion, if any."""
     if length is not None and flexion is not None:
         raise click.UsageError("give --length or --flexion, not both")
-    arm = load_config(config_path).arm
     if length is not None:
         return arm.at_length(length)
     if flexion is not None:
@@ -108,7 +112,7 @@ def app(config: Path, colors: str) -> None:
 @_refusals_exit_2
 def info(config: Path, length: float | None, flexion: float | None, as_json: bool) -> None:
     """Length, flexion, volume and radii of the muscle in CONFIG."""
-    arm = posed_arm(config, length, flexion)
+    arm = posed(load_config(config).arm, length, flexion)
     facts = describe(arm)
     if as_json:
         click.echo(json.dumps(facts, indent=2))
@@ -144,6 +148,103 @@ def describe(arm: Arm) -> dict[str, Any]:
         "radii_cm": muscle.radii.tolist(),
         "growth": muscle.growth.tolist(),
     }
+
+
+def _parse_size(_ctx: Any, _param: Any, value: str) -> tuple[int, int]:
+    width, _, height = value.lower().partition("x")
+    if not (width.isdigit() and height.isdigit()):
+        raise click.BadParameter(f"give WIDTHxHEIGHT in pixels, like 1920x1080; got {value!r}")
+    size = int(width), int(height)
+    if not all(1 <= side <= MAX_SIDE for side in size):
+        raise click.BadParameter(f"each side must be 1 to {MAX_SIDE} pixels; got {value!r}")
+    return size
+
+
+def _parse_point(_ctx: Any, _param: Any, value: str | None) -> tuple[float, float, float] | None:
+    if value is None:
+        return None
+    try:
+        x, y, z = (float(part) for part in value.split(","))
+    except ValueError:
+        raise click.BadParameter(f"give X,Y,Z in cm, like 60,80,120; got {value!r}") from None
+    if not all(map(math.isfinite, (x, y, z))):
+        raise click.BadParameter(f"the coordinates must be finite numbers; got {value!r}")
+    return x, y, z
+
+
+def view_options(command: Callable) -> Callable:
+    """Options that override the config's view, light and rendering."""
+    options = [
+        click.option("--yaw", type=float, help="Turn about the vertical axis, degrees."),
+        click.option("--pitch", type=float, help="Tilt about the horizontal axis, degrees."),
+        click.option("--roll", type=float, help="Roll about the line of sight, degrees."),
+        click.option("--scale", type=click.FloatRange(min=0.01, max=100), help="Zoom factor."),
+        click.option("--light", callback=_parse_point, metavar="X,Y,Z",
+                     help="Light position in world space, cm."),
+        click.option("--ssaa", type=click.IntRange(1, 4), help="Supersampling factor, 1 to 4."),
+        click.option("--shading", type=click.Choice(["gouraud", "phong"]), help="Shading model."),
+    ]
+    for option in reversed(options):
+        command = option(command)
+    return command
+
+
+def posed_scene(config_path: Path, length: float | None, flexion: float | None,
+                **overrides: Any) -> Scene:
+    """The config's scene in the asked pose, with the command line's overrides applied."""
+    scene = Scene.of(load_config(config_path))
+    scene = scene.with_arm(posed(scene.arm, length, flexion))
+    view = {k: overrides[k] for k in ("yaw", "pitch", "roll", "scale") if overrides[k] is not None}
+    render = {k: overrides[k] for k in ("ssaa", "shading") if overrides[k] is not None}
+    scene = scene.with_view(**view).with_render(**render)
+    if overrides["light"] is not None:
+        scene = scene.with_light(position=overrides["light"])
+    return scene
+
+
+@main.command()
+@config_argument
+@click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
+              help="The PNG file to write.")
+@click.option("--size", default="1920x1080", show_default=True, callback=_parse_size,
+              metavar="WxH", help="Picture size in pixels.")
+@click.option("--ansi", is_flag=True,
+              help="Print the picture to this terminal as half-block pixels instead.")
+@pose_options
+@view_options
+@_refusals_exit_2
+def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: bool,
+             length: float | None, flexion: float | None, **overrides: Any) -> None:
+    """Render CONFIG to a PNG file, with no terminal needed."""
+    if ansi == (output is not None):
+        raise click.UsageError("give -o FILE.png, or --ansi to print to the terminal")
+    if output is not None:
+        check_writable(output, ".png")
+    scene = posed_scene(config, length, flexion, **overrides)
+    if ansi:
+        from tui.ansi import print_picture  # rich, only for this mode
+
+        print_picture(lambda width, height: SceneRenderer().render(scene, width, height))
+        return
+    write_png(output, SceneRenderer().render(scene, *size))
+    click.echo(f"wrote {output} ({size[0]}x{size[1]})", err=True)
+
+
+@main.command("export-mesh")
+@config_argument
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False, path_type=Path),
+              help="The file to write: .obj, .stl, .ply or .glb.")
+@click.option("--segments", type=click.IntRange(3, 1024), help="Vertices around each axis.")
+@pose_options
+@_refusals_exit_2
+def export_mesh(config: Path, output: Path, segments: int | None, length: float | None,
+                flexion: float | None) -> None:
+    """Write the arm in CONFIG as a mesh: muscle and bones as separate named parts, in cm."""
+    check_writable(output, *MESH_FORMATS)
+    loaded = load_config(config)
+    arm = posed(loaded.arm, length, flexion)
+    write_mesh(output, arm, segments or loaded.render.segments)
+    click.echo(f"wrote {output}", err=True)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,132 @@
+"""What one picture shows: the arm, how it is viewed and lit, and how it is rendered.
+
+The camera frames a sphere that holds the arm in every pose its joint allows, centred on a
+fixed pivot, so contracting the muscle bends the arm in place instead of re-zooming, and
+turning the model about that pivot never swings it out of view.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+
+import numpy as np
+
+from engine.arm import Arm
+from engine.config import Config, LightTable, RenderTable, ViewTable, rgb
+from engine.mesh import Mesh, arm_meshes
+from engine.render import Renderer
+from engine.skeleton import Skeleton
+from engine.transforms import Camera, Light, model_matrix
+
+
+@dataclass(frozen=True)
+class Scene:
+    """Everything a frame depends on; immutable, so a render thread can hold one safely."""
+
+    arm: Arm
+    view: ViewTable
+    light: LightTable
+    render: RenderTable
+
+    @classmethod
+    def of(cls, config: Config) -> Scene:
+        return cls(config.arm, config.view, config.light, config.render)
+
+    def with_view(self, **changes) -> Scene:
+        return replace(self, view=self.view.model_copy(update=changes))
+
+    def with_light(self, **changes) -> Scene:
+        return replace(self, light=self.light.model_copy(update=changes))
+
+    def with_render(self, **changes) -> Scene:
+        return replace(self, render=self.render.model_copy(update=changes))
+
+    def with_arm(self, arm: Arm) -> Scene:
+        return replace(self, arm=arm)
+
+
+def scene_mesh(arm: Arm, segments: int, muscle_colour: str, bone_colour: str) -> tuple[Mesh, np.ndarray]:
+    """The arm as one world-space mesh, and its per-vertex albedo (n, 3) float32 in [0, 1]."""
+    pose = arm.pose
+    parts = arm_meshes(
+        pose.shoulder, pose.origin, pose.elbow, pose.insertion, pose.hand,
+        arm.muscle.radii, arm.length, segments,
+    )  # fmt: skip
+    colours = {"muscle": _unit_rgb(muscle_colour)}
+    albedo = [np.broadcast_to(colours.get(name, _unit_rgb(bone_colour)), (len(part.vertices), 3))
+              for name, part in parts.items()]
+    return Mesh.concatenate(list(parts.values())), np.concatenate(albedo).astype(np.float32)
+
+
+def _unit_rgb(colour: str) -> np.ndarray:
+    return np.array(rgb(colour), dtype=np.float32) / 255.0
+
+
+@lru_cache(maxsize=16)
+def reach(skeleton: Skeleton) -> tuple[np.ndarray, float]:
+    """The centre (3,) and radius (cm) of a sphere holding the arm in every allowed pose."""
+    flexions = np.linspace(skeleton.min_flexion, skeleton.max_flexion, 33)
+    hands = [skeleton.pose(skeleton.length_at(f)).hand for f in flexions]
+    top = max(skeleton.upper_arm, skeleton.origin_to_elbow)
+    points = np.array([[0.0, top, 0.0], [0.0, 0.0, 0.0], *hands])
+    centre = (points.min(axis=0) + points.max(axis=0)) / 2
+    margin = 3.0  # the muscle's belly and the bones' radii stand out of the skeleton's lines
+    return centre, float(np.linalg.norm(points - centre, axis=1).max()) + margin
+
+
+def view_camera(scene: Scene, aspect: float) -> tuple[Camera, np.ndarray]:
+    """The camera for ``scene`` at this width / height, and the model matrix (4, 4)."""
+    centre, radius = reach(scene.arm.skeleton)
+    view = scene.view
+    # A sphere fits a cone of half-angle h when seen from R / sin(h) away; h is the
+    # narrower of the vertical and the horizontal half-angles of the view.
+    half_y = np.radians(view.fov) / 2
+    half = min(half_y, np.arctan(np.tan(half_y) * aspect))
+    distance = radius / np.sin(half)
+    camera = Camera(
+        eye=tuple(centre + [0.0, 0.0, distance]), target=tuple(centre), fov_y_deg=view.fov,
+        near=0.05 * distance, far=distance + 8 * radius * max(view.scale, 1.0),
+    )
+    model = model_matrix(
+        np.radians(view.yaw), np.radians(view.pitch), np.radians(view.roll),
+        view.scale, view.offset, pivot=centre,
+    )  # fmt: skip
+    return camera, model
+
+
+class SceneRenderer:
+    """Turns scenes into pictures, reusing its buffers and the last mesh between frames.
+
+    Not thread-safe: give each thread its own.
+    """
+
+    def __init__(self) -> None:
+        self._renderer = Renderer()
+        self._mesh_key: tuple | None = None
+        self._mesh: tuple[Mesh, np.ndarray] | None = None
+
+    def render(self, scene: Scene, width: int, height: int) -> np.ndarray:
+        """The picture of ``scene``: (height, width, 3) uint8, valid until the next call."""
+        mesh, albedo = self._mesh_of(scene)
+        camera, model = view_camera(scene, width / height)
+        light = scene.light
+        return self._renderer.render(
+            mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
+            Light(light.position, light.ambient, light.diffuse, light.specular, light.shininess),
+            width, height, shading=scene.render.shading, ssaa=scene.render.ssaa,
+            background=rgb(scene.render.background),
+        )  # fmt: skip
+
+    def _mesh_of(self, scene: Scene) -> tuple[Mesh, np.ndarray]:
+        # Turning, moving and lighting leave the mesh as it was: rebuild it only when the
+        # arm or its look changes.
+        render = scene.render
+        # The arm compares its muscle by identity (a new muscle is a new object), and the
+        # key holds the arm, so the identity cannot be reused by another.
+        key = (scene.arm, render.segments, render.muscle_colour, render.bone_colour)
+        if key != self._mesh_key:
+            self._mesh = scene_mesh(scene.arm, render.segments, render.muscle_colour,
+                                    render.bone_colour)
+            self._mesh_key = key
+        return self._mesh

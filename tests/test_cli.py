@@ -1,0 +1,129 @@
+"""The headless commands: info, snapshot and export-mesh, as a script would use them."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import trimesh
+from click.testing import CliRunner
+from PIL import Image
+
+from engine.cli import main
+
+DEFAULT = Path(__file__).resolve().parent.parent / "configs" / "biceps.toml"
+
+
+def run(*args: str):
+    return CliRunner().invoke(main, [str(a) for a in args])
+
+
+def test_info_json_reports_the_pose_and_the_volume():
+    result = run("info", DEFAULT, "--flexion", "90", "--json")
+    assert result.exit_code == 0, result.output
+    facts = json.loads(result.stdout)
+    assert facts["flexion_deg"] == pytest.approx(90.0)
+    assert facts["volume_relative_error"] < 1e-12
+    assert facts["nodes"] == len(facts["radii_cm"]) == 15
+    assert facts["girth_cm"] == pytest.approx(2 * np.pi * max(facts["radii_cm"]))
+
+
+def test_info_refuses_an_unreachable_length():
+    result = run("info", DEFAULT, "--length", "50")
+    assert result.exit_code == 2
+    assert "27.05 to 35.60 cm" in result.stderr
+
+
+def test_snapshot_writes_a_png_of_the_asked_size(tmp_path):
+    out = tmp_path / "arm.png"
+    result = run("snapshot", DEFAULT, "-o", out, "--size", "320x200", "--flexion", "45")
+    assert result.exit_code == 0, result.output
+    with Image.open(out) as picture:
+        assert picture.size == (320, 200)
+        pixels = np.asarray(picture.convert("RGB"))
+    background = np.array([0x12, 0x16, 0x1C])
+    assert (np.abs(pixels.astype(int) - background).sum(axis=2) > 30).any()  # something drawn
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--size", "0x0"], "each side must be 1 to 16384"),
+        (["--size", "abc"], "give WIDTHxHEIGHT"),
+        (["--size", "12x"], "give WIDTHxHEIGHT"),
+        (["--light", "1,2"], "give X,Y,Z"),
+        (["--light", "1,nan,2"], "finite"),
+        (["--ssaa", "9"], "--ssaa"),
+        (["--shading", "flat"], "--shading"),
+        (["--length", "30", "--flexion", "20"], "not both"),
+        (["--flexion", "170"], "outside the joint's range"),
+    ],
+)
+def test_snapshot_refuses_bad_arguments_and_writes_nothing(tmp_path, args, message):
+    out = tmp_path / "arm.png"
+    result = run("snapshot", DEFAULT, "-o", out, *args)
+    assert result.exit_code == 2
+    assert message in result.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("output", "message"),
+    [("no/such/dir/arm.png", "there is no directory"), ("arm.jpg", "must end in .png")],
+)
+def test_snapshot_refuses_an_unwritable_output(tmp_path, output, message):
+    result = run("snapshot", DEFAULT, "-o", tmp_path / output)
+    assert result.exit_code == 2
+    assert message in result.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_snapshot_runs_without_importing_textual_or_rich(tmp_path):
+    out = tmp_path / "arm.png"
+    code = (
+        "import sys\n"
+        "from engine.cli import main\n"
+        f"try:\n    main(['snapshot', {str(DEFAULT)!r}, '-o', {str(out)!r}, '--size', '64x48'])\n"
+        "except SystemExit as done:\n    assert done.code in (0, None), done.code\n"
+        "leaked = sorted(m for m in sys.modules if m.split('.')[0] in ('textual', 'rich', 'tui'))\n"
+        "assert not leaked, leaked\n"
+    )
+    process = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                             timeout=120)
+    assert process.returncode == 0, process.stderr
+    assert out.exists()
+
+
+PARTS = {"muscle", "humerus", "forearm", "elbow"}
+
+
+def test_export_mesh_writes_named_parts_to_gltf(tmp_path):
+    out = tmp_path / "arm.glb"
+    result = run("export-mesh", DEFAULT, "-o", out, "--flexion", "90")
+    assert result.exit_code == 0, result.output
+    scene = trimesh.load(out, force="scene")
+    assert set(scene.geometry) == PARTS
+    assert scene.geometry["muscle"].is_watertight
+
+
+def test_export_mesh_writes_named_objects_to_obj(tmp_path):
+    out = tmp_path / "arm.obj"
+    assert run("export-mesh", DEFAULT, "-o", out).exit_code == 0
+    objects = {line[2:].strip() for line in out.read_text().splitlines() if line.startswith("o ")}
+    assert objects == PARTS
+
+
+@pytest.mark.parametrize("suffix", [".stl", ".ply"])
+def test_export_mesh_merges_parts_for_single_mesh_formats(tmp_path, suffix):
+    out = tmp_path / f"arm{suffix}"
+    assert run("export-mesh", DEFAULT, "-o", out).exit_code == 0
+    mesh = trimesh.load(out, force="mesh")
+    assert len(mesh.faces) > 1000
+
+
+def test_export_mesh_refuses_an_unknown_format(tmp_path):
+    result = run("export-mesh", DEFAULT, "-o", tmp_path / "arm.fbx")
+    assert result.exit_code == 2
+    assert ".obj, .stl, .ply, .glb" in result.stderr
