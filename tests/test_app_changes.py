@@ -1,0 +1,75 @@
+"""The scene changes behind the keys, checked without a terminal."""
+
+import numpy as np
+import pytest
+
+from engine.errors import RefusedChange
+from engine.scene import Scene
+from tui.changes import (
+    LARGEST_SCALE,
+    SMALLEST_SCALE,
+    differs_from_saved,
+    length_changed,
+    turned,
+    with_antialiasing_switched,
+    with_node,
+    zoomed,
+)
+
+
+@pytest.fixture
+def scene(config) -> Scene:
+    return Scene.of(config)
+
+
+def test_a_full_turn_comes_back_to_the_same_angle(scene):
+    for _ in range(72):
+        scene = turned(scene, yaw=5.0)
+    assert scene.view.yaw == pytest.approx(-25.0)
+
+
+def test_angles_stay_within_a_half_turn_either_way(scene):
+    assert turned(scene, yaw=200.0).view.yaw == pytest.approx(175.0)
+    assert turned(scene, pitch=-200.0).view.pitch == pytest.approx(170.0)
+
+
+@pytest.mark.parametrize("steps, limit, word", [(100, LARGEST_SCALE, "largest"),
+                                                (-100, SMALLEST_SCALE, "smallest")])
+def test_scale_stops_at_a_limit_then_refuses(scene, steps, limit, word):
+    scene = zoomed(scene, steps)
+    assert scene.view.scale == limit
+    with pytest.raises(RefusedChange, match=word):
+        zoomed(scene, steps)
+
+
+def test_anti_aliasing_switches_off_from_any_level(scene):
+    assert with_antialiasing_switched(scene.with_render(ssaa=3)).render.ssaa == 1
+    assert with_antialiasing_switched(scene).render.ssaa == 2
+
+
+def test_contracting_then_stretching_back_leaves_nothing_to_save(scene):
+    shorter, _ = length_changed(scene, -1.0)
+    assert differs_from_saved(shorter, scene)
+    back, _ = length_changed(shorter, 1.0)
+    assert not differs_from_saved(back, scene)
+
+
+def test_moving_the_light_is_something_to_save(scene):
+    assert differs_from_saved(scene.with_light(position=(0.0, 0.0, 1.0)), scene)
+
+
+def test_an_untouched_node_edit_keeps_the_muscle(scene):
+    muscle = scene.arm.muscle
+    assert with_node(muscle, 7, muscle.radii[7], muscle.growth[7]) is muscle
+
+
+def test_a_node_edit_sets_both_values(scene):
+    edited = with_node(scene.arm.muscle, 7, 2.5, 1.0)
+    assert (edited.radii[7], edited.growth[7]) == (2.5, 1.0)
+    assert np.array_equal(np.delete(edited.radii, 7), np.delete(scene.arm.muscle.radii, 7))
+
+
+def test_scaling_up_and_down_comes_back_to_a_round_number(scene):
+    bigger = zoomed(zoomed(scene, 1), 1)
+    assert bigger.view.scale == 1.21
+    assert zoomed(zoomed(bigger, -1), -1).view.scale == 1.0

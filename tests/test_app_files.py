@@ -1,0 +1,190 @@
+"""Saving, opening, exporting and quitting: no edit is ever lost, every failure is said."""
+
+from pathlib import Path
+
+import numpy as np
+from PIL import Image
+from textual.widgets import Input
+
+from engine.config import load_config
+from tui.screens.choice import Choice
+from tui.screens.prompt import Prompt
+from tui.widgets.node_table import NodeTable
+
+CONFIGS = Path(__file__).resolve().parent.parent / "configs"
+BROKEN = Path(__file__).resolve().parent / "invalid_configs" / "broken_toml.toml"
+
+
+async def _answer(session, *values: str) -> None:
+    """Fill the open dialog's inputs with ``values`` and press enter."""
+    assert isinstance(session.app.screen, Prompt)
+    for box, value in zip(session.app.screen.query(Input), values):
+        box.value = value
+    await session.pilot.press("enter")
+    await session.settle()
+
+
+async def test_saved_edits_come_back_when_the_file_is_read_again(biceps, config_path):
+    async with biceps() as session:
+        session.app.screen.query_one(NodeTable).move_cursor(row=3)
+        await session.pilot.press("C", "tab", "n", "right", "l", "g", "ctrl+s")
+        assert not session.app.unsaved
+        scene = session.app.scene
+    saved = load_config(config_path)
+    assert saved.arm.length == scene.arm.length
+    assert np.array_equal(saved.arm.muscle.radii, scene.arm.muscle.radii)
+    assert np.array_equal(saved.arm.muscle.growth, scene.arm.muscle.growth)
+    assert (saved.view, saved.light, saved.render) == (scene.view, scene.light, scene.render)
+    assert saved.source.startswith("# A human biceps brachii")  # the comments survive
+
+
+async def test_save_as_writes_another_file_and_works_on_it_from_then_on(biceps, config_path,
+                                                                        tmp_path):
+    original = config_path.read_text()
+    async with biceps() as session:
+        await session.pilot.press("c", "ctrl+d")
+        await _answer(session, str(tmp_path / "copy.toml"))
+        assert session.app.config.path == tmp_path / "copy.toml"
+        assert not session.app.unsaved
+        assert "copy.toml" in session.app.sub_title
+    assert load_config(tmp_path / "copy.toml").arm.length == 32.9
+    assert config_path.read_text() == original
+
+
+async def test_save_as_into_a_missing_directory_says_so_and_keeps_the_edits(biceps, config_path):
+    async with biceps() as session:
+        await session.pilot.press("c", "ctrl+d")
+        await _answer(session, "/nonexistent/dir/x.toml")
+        assert [note.title for note in session.notes] == ["Not saved"]
+        assert "/nonexistent/dir" in session.notes[0].message
+        assert session.app.unsaved
+        assert session.app.config.path == config_path
+        assert session.app.scene.arm.length == 32.9
+
+
+async def test_save_as_over_another_file_asks_first(biceps, tmp_path):
+    other = tmp_path / "other.toml"
+    other.write_text("keep me")
+    async with biceps() as session:
+        await session.pilot.press("c", "ctrl+d")
+        await _answer(session, str(other))
+        assert isinstance(session.app.screen, Choice)
+        await session.pilot.press("escape")
+        assert other.read_text() == "keep me"
+        await session.pilot.press("ctrl+d")
+        await _answer(session, str(other))
+        await session.pilot.press("y")
+        assert load_config(other).arm.length == 32.9
+
+
+async def test_a_directory_is_not_a_file_name(biceps, tmp_path):
+    async with biceps() as session:
+        await session.pilot.press("ctrl+d")
+        await _answer(session, str(tmp_path))
+        assert isinstance(session.app.screen, Prompt)
+        assert any("is a directory" in warning for warning in session.warnings)
+
+
+async def test_opening_another_configuration_shows_it(biceps):
+    async with biceps() as session:
+        await session.pilot.press("ctrl+o")
+        await _answer(session, str(CONFIGS / "toy.toml"))
+        assert session.app.scene.arm.muscle.node_count == 4
+        assert session.app.sub_title == "toy.toml"
+        assert not session.app.unsaved
+        assert session.app.screen.query_one(NodeTable).row_count == 4
+
+
+async def test_a_broken_file_is_not_opened_and_the_model_stays(biceps):
+    async with biceps() as session:
+        before = session.app.scene
+        await session.pilot.press("ctrl+o")
+        await _answer(session, str(BROKEN))
+        assert any("not valid TOML" in warning for warning in session.warnings)
+        assert session.app.scene is before
+
+
+async def test_opening_over_unsaved_edits_asks_first(biceps):
+    async with biceps() as session:
+        await session.pilot.press("c", "ctrl+o")
+        await _answer(session, str(CONFIGS / "toy.toml"))
+        assert isinstance(session.app.screen, Choice)
+        await session.pilot.press("escape")
+        assert session.app.scene.arm.length == 32.9
+        await session.pilot.press("ctrl+o")
+        await _answer(session, str(CONFIGS / "toy.toml"))
+        await session.pilot.press("d")
+        assert session.app.scene.arm.muscle.node_count == 4
+
+
+async def test_export_writes_a_png_of_the_asked_size(biceps, tmp_path):
+    async with biceps() as session:
+        await session.pilot.press("e")
+        await _answer(session, str(tmp_path / "arm.png"), "320x200")
+        with Image.open(tmp_path / "arm.png") as picture:
+            assert picture.size == (320, 200)
+        assert any("Exported" in note.message for note in session.notes)
+
+
+async def test_export_is_1920_by_1080_unless_asked_otherwise(biceps, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    async with biceps() as session:
+        await session.pilot.press("e", "enter")
+        await session.settle()
+    with Image.open(tmp_path / "biceps.png") as picture:
+        assert picture.size == (1920, 1080)
+
+
+async def test_export_needs_a_png_name_and_a_size(biceps, tmp_path):
+    async with biceps() as session:
+        await session.pilot.press("e")
+        await _answer(session, str(tmp_path / "arm"), "320x200")
+        assert any("must end in .png" in warning for warning in session.warnings)
+        await _answer(session, str(tmp_path / "arm.png"), "huge")
+        assert any("not a size" in warning for warning in session.warnings)
+        assert isinstance(session.app.screen, Prompt)
+    assert not (tmp_path / "arm.png").exists()
+
+
+async def test_export_into_a_missing_directory_says_so_before_rendering(biceps):
+    async with biceps() as session:
+        await session.pilot.press("e")
+        await _answer(session, "/nonexistent/dir/x.png", "64x64")
+        assert isinstance(session.app.screen, Prompt)
+        assert any("/nonexistent/dir" in warning for warning in session.warnings)
+
+
+async def test_quit_without_edits_quits(biceps):
+    async with biceps() as session:
+        await session.pilot.press("q")
+        assert session.app.return_code == 0
+
+
+async def test_quit_with_unsaved_edits_asks_and_waits_for_an_answer(biceps, config_path):
+    original = config_path.read_text()
+    async with biceps() as session:
+        await session.pilot.press("c", "q")
+        assert isinstance(session.app.screen, Choice)
+        assert session.app.return_code is None
+        await session.pilot.press("escape")
+        assert session.app.return_code is None
+        assert session.app.scene.arm.length == 32.9
+        await session.pilot.press("ctrl+q", "d")
+        assert session.app.return_code == 0
+    assert config_path.read_text() == original
+
+
+async def test_quit_can_save_first(biceps, config_path):
+    async with biceps() as session:
+        await session.pilot.press("c", "q", "s")
+        assert session.app.return_code == 0
+    assert load_config(config_path).arm.length == 32.9
+
+
+async def test_ctrl_q_asks_even_from_inside_a_dialog(biceps):
+    async with biceps() as session:
+        await session.pilot.press("c", "e", "ctrl+q")
+        assert isinstance(session.app.screen, Choice)
+        await session.pilot.press("ctrl+q")  # asking twice does not stack questions
+        await session.pilot.press("escape")
+        assert isinstance(session.app.screen, Prompt)

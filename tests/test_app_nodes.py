@@ -1,0 +1,147 @@
+"""Editing the muscle node by node in the table: good values take, bad ones change nothing."""
+
+from pathlib import Path
+
+import pytest
+from textual.widgets import Input
+
+from engine.config import load_config
+from tui.screens.prompt import Prompt
+from tui.widgets.node_table import NodeTable
+
+CONFIGS = Path(__file__).resolve().parent.parent / "configs"
+
+
+async def _edit(session, node: int, radius: str | None = None, growth: str | None = None):
+    """Open node ``node`` (1-based) for editing, fill in what is given and press enter."""
+    table = session.app.screen.query_one(NodeTable)
+    table.focus()
+    table.move_cursor(row=node - 1)
+    await session.pilot.press("enter")
+    radius_box, growth_box = session.app.screen.query(Input)
+    if radius is not None:
+        radius_box.value = radius
+    if growth is not None:
+        growth_box.value = growth
+    await session.pilot.press("enter")
+
+
+async def test_typing_a_radius_changes_that_node_and_the_picture_follows(biceps):
+    async with biceps() as session:
+        app, pilot = session.app, session.pilot
+        await pilot.press("tab", *["down"] * 7, "enter")
+        assert isinstance(app.screen, Prompt)
+        await pilot.press(*"2.5", "enter")
+        assert not isinstance(app.screen, Prompt)
+        muscle = app.scene.arm.muscle
+        assert muscle.radii[7] == 2.5
+        assert muscle.growth[7] == 2.05
+        assert app.unsaved
+        await session.settle()
+        assert "2.500" in str(app.screen.query_one(NodeTable).get_row_at(7))
+
+
+async def test_growth_is_edited_in_the_same_dialog(biceps):
+    async with biceps() as session:
+        await _edit(session, 3, growth="0.5")
+        muscle = session.app.scene.arm.muscle
+        assert (muscle.radii[2], muscle.growth[2]) == (0.6, 0.5)
+
+
+async def test_confirming_an_untouched_edit_changes_nothing_even_when_contracted(biceps):
+    async with biceps() as session:
+        await session.pilot.press("c")
+        before = session.app.scene.arm.muscle
+        await _edit(session, 8)
+        assert session.app.scene.arm.muscle is before
+
+
+BAD_VALUES = [
+    ("abc", "2.05", "not a number"),
+    ("", "2.05", "nothing is not a number"),
+    ("nan", "2.05", "not a finite number"),
+    ("-1", "2.05", "radius must be above 0"),
+    ("0", "2.05", "radius must be above 0"),
+    ("2.08", "-0.5", "growth must be 0 or more"),
+]
+
+
+async def test_bad_values_are_refused_one_by_one_until_a_good_one_is_typed(biceps):
+    async with biceps() as session:
+        before = session.app.scene
+        table = session.app.screen.query_one(NodeTable)
+        table.focus()
+        table.move_cursor(row=7)
+        await session.pilot.press("enter")
+        radius_box, growth_box = session.app.screen.query(Input)
+        for radius, growth, complaint in BAD_VALUES:
+            radius_box.value, growth_box.value = radius, growth
+            await session.pilot.press("enter")
+            assert isinstance(session.app.screen, Prompt)  # still open, the text there to fix
+            assert complaint in session.warnings[-1]
+            assert session.app.scene is before
+        radius_box.value, growth_box.value = "2.5", "2.05"
+        await session.pilot.press("enter")
+        assert not isinstance(session.app.screen, Prompt)
+        assert session.app.scene.arm.muscle.radii[7] == 2.5
+
+
+async def test_escape_leaves_the_node_as_it_was(biceps):
+    async with biceps() as session:
+        before = session.app.scene
+        await session.pilot.press("tab", "enter", *"9", "escape")
+        assert session.app.scene is before
+
+
+@pytest.mark.parametrize("key", ["n", "insert"])
+async def test_a_node_is_inserted_after_the_picked_one(biceps, key):
+    async with biceps() as session:
+        await session.pilot.press("tab", "down", key)
+        muscle = session.app.scene.arm.muscle
+        assert muscle.node_count == 16
+        assert muscle.radii[2] == pytest.approx((0.40 + 0.60) / 2)
+
+
+async def test_nothing_is_inserted_after_the_last_node(biceps):
+    async with biceps() as session:
+        session.app.screen.query_one(NodeTable).move_cursor(row=14)
+        await session.pilot.press("tab", "n")
+        assert session.app.scene.arm.muscle.node_count == 15
+        assert any("between two neighbours" in warning for warning in session.warnings)
+
+
+@pytest.mark.parametrize("key", ["delete", "backspace"])
+async def test_the_picked_node_is_deleted(biceps, key):
+    async with biceps() as session:
+        table = session.app.screen.query_one(NodeTable)
+        table.move_cursor(row=7)
+        await session.pilot.press("tab", key)
+        muscle = session.app.scene.arm.muscle
+        assert muscle.node_count == 14
+        assert muscle.radii[7] == 2.02  # the one that followed it
+        assert table.cursor_row == 7
+
+
+async def test_the_last_two_nodes_stay(biceps):
+    async with biceps(on=load_config(CONFIGS / "toy.toml")) as session:
+        await session.pilot.press("tab", "backspace", "backspace", "backspace")
+        assert session.app.scene.arm.muscle.node_count == 2
+        assert any("at least 2 nodes" in warning for warning in session.warnings)
+
+
+async def test_subdividing_doubles_the_segments_and_keeps_the_volume(biceps):
+    async with biceps() as session:
+        before = session.app.scene.arm.muscle
+        await session.pilot.press("tab", "slash")
+        after = session.app.scene.arm.muscle
+        assert after.node_count == 29
+        assert after.volume == pytest.approx(before.volume, rel=1e-12)
+        assert session.app.screen.query_one(NodeTable).row_count == 29
+
+
+async def test_clicking_a_picked_node_opens_it(biceps):
+    async with biceps() as session:
+        table = session.app.screen.query_one(NodeTable)
+        await session.pilot.click(table, offset=(3, 3))  # under the header and the border
+        await session.pilot.click(table, offset=(3, 3))
+        assert isinstance(session.app.screen, Prompt)

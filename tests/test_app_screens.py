@@ -1,0 +1,108 @@
+"""The layout follows the terminal's size; help and the command palette cover every key."""
+
+from importlib.resources import files
+
+import pytest
+from textual.binding import Binding
+from textual.command import CommandList
+from textual.widgets import Static
+
+from engine.scene import SceneRenderer
+from tui.app import BicepsApp
+from tui.commands import KeyCommands
+from tui.screens.help import HelpScreen
+from tui.screens.main import MainScreen
+from tui.widgets.node_table import NodeTable
+from tui.widgets.viewport import Viewport
+
+
+@pytest.fixture
+def render_sizes(monkeypatch) -> list[tuple[int, int]]:
+    """Every (width, height) in pixels the viewport asks its renderer for."""
+    sizes = []
+
+    class RecordingRenderer(SceneRenderer):
+        def render(self, scene, width, height):
+            sizes.append((width, height))
+            return super().render(scene, width, height)
+
+    monkeypatch.setattr("tui.widgets.viewport.SceneRenderer", RecordingRenderer)
+    return sizes
+
+
+async def test_the_picture_is_rendered_at_two_pixels_per_cell_and_again_on_resize(
+    biceps, render_sizes
+):
+    async with biceps(size=(100, 30)) as session:
+        viewport = session.app.screen.query_one(Viewport)
+        width, height = viewport.size
+        assert render_sizes[-1] == (width, 2 * height)
+        await session.pilot.resize_terminal(160, 50)
+        await session.settle()
+        assert viewport.size.width > width and viewport.size.height > height
+        assert render_sizes[-1] == (viewport.size.width, 2 * viewport.size.height)
+        assert viewport.render_line(0).cell_length == viewport.size.width
+
+
+async def test_a_terminal_too_small_gets_a_message_instead_of_the_layout(biceps, render_sizes):
+    async with biceps(size=(50, 12)) as session:
+        screen = session.app.screen
+        assert screen.has_class("-too-small")
+        assert screen.query_one("#too-small", Static).display
+        await session.pilot.press("c")  # keys still work, and nothing breaks
+        await session.pilot.resize_terminal(100, 30)
+        await session.settle()
+        assert not screen.has_class("-too-small")
+        viewport = screen.query_one(Viewport)
+        assert render_sizes[-1] == (viewport.size.width, 2 * viewport.size.height)
+
+
+@pytest.mark.parametrize("key", ["question_mark", "f1"])
+async def test_help_opens_and_closes(biceps, key):
+    async with biceps() as session:
+        await session.pilot.press(key)
+        assert isinstance(session.app.screen, HelpScreen)
+        await session.pilot.press("escape")
+        assert isinstance(session.app.screen, MainScreen)
+
+
+def _bindings() -> list[Binding]:
+    return [*Binding.make_bindings(BicepsApp.BINDINGS), *Binding.make_bindings(NodeTable.BINDINGS)]
+
+
+# How help.md writes the keys whose Textual names are words.
+WRITTEN = {
+    "left": "←", "right": "→", "up": "↑", "down": "↓",
+    "shift+left": "shift+←", "shift+right": "shift+→",
+    "shift+up": "shift+↑", "shift+down": "shift+↓",
+    "left_square_bracket": "[", "right_square_bracket": "]", "plus": "+", "equals_sign": "=",
+    "minus": "-", "question_mark": "?", "slash": "/",
+}  # fmt: skip
+
+
+def test_the_help_lists_every_key():
+    help_text = files("tui").joinpath("help.md").read_text()
+    for binding in _bindings():
+        written = WRITTEN.get(binding.key, binding.key)
+        assert f"`{written}`" in help_text, f"{binding.key} is not in help.md"
+
+
+async def test_the_command_palette_offers_every_action(biceps):
+    async with biceps() as session:
+        provider = KeyCommands(session.app.screen)
+        offered = {hit.text async for hit in provider.discover()}
+        described = {binding.description for binding in _bindings()}
+        assert described <= offered
+
+
+async def test_a_command_from_the_palette_runs(biceps):
+    async with biceps() as session:
+        await session.pilot.press("ctrl+p", *"stretch 1 cm")
+        commands = session.app.screen.query_one(CommandList)
+        for _ in range(1000):  # the palette searches in the background
+            if commands.option_count:
+                break
+            await session.pilot.pause(0.01)
+        await session.pilot.press("enter")
+        await session.settle()
+        assert session.app.scene.arm.length == pytest.approx(34.0)

@@ -1,0 +1,40 @@
+"""What the screens look like, compared with the accepted SVG snapshots.
+
+Update them with ``pytest tests/test_app_snapshots.py --snapshot-update`` and look at the
+result (``tests/__snapshots__``) before accepting it.
+"""
+
+from textual.pilot import Pilot
+
+from tui.app import BicepsApp
+from tui.widgets.viewport import Viewport
+
+
+async def _picture_drawn(pilot: Pilot) -> None:
+    await pilot.pause()  # the main screen may not be composed yet
+    viewport = pilot.app.screen_stack[0].query_one(Viewport)
+    for _ in range(1000):
+        if viewport.up_to_date:
+            return
+        await pilot.pause(0.01)
+    raise AssertionError("the picture never caught up with the scene")
+
+
+def test_main_screen(snap_compare, config):
+    async def contract_and_turn(pilot: Pilot) -> None:
+        await pilot.press("C", "C", "right", "right")
+        await _picture_drawn(pilot)
+
+    assert snap_compare(BicepsApp(config), terminal_size=(100, 30), run_before=contract_and_turn)
+
+
+def test_main_screen_at_80_by_24(snap_compare, config):
+    assert snap_compare(BicepsApp(config), terminal_size=(80, 24), run_before=_picture_drawn)
+
+
+def test_help_screen(snap_compare, config):
+    async def open_help(pilot: Pilot) -> None:
+        await _picture_drawn(pilot)
+        await pilot.press("question_mark")
+
+    assert snap_compare(BicepsApp(config), terminal_size=(100, 30), run_before=open_help)

@@ -1,0 +1,1 @@
+"""The terminal app around the engine: Textual screens, widgets and keys."""

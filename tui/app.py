@@ -1,0 +1,330 @@
+"""The biceps app: one scene, the keys that change it, and the files it comes from and goes to.
+
+The app holds the whole state as one immutable :class:`~engine.scene.Scene`; every key,
+drag and edit replaces it with a new one, and the main screen watches it. A change the
+model refuses leaves the scene as it was and says why in a notification.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import replace
+from functools import partial
+from pathlib import Path
+from time import monotonic
+from typing import Callable
+
+import textual.constants
+from textual import on, work
+from textual.app import App
+from textual.binding import Binding
+from textual.notifications import SeverityLevel
+from textual.reactive import var
+from textual.screen import Screen
+
+from engine.config import Config, load_config, save_config
+from engine.errors import BicepsError
+from engine.export import check_writable, write_png
+from engine.scene import Scene, SceneRenderer
+from tui.changes import (
+    COARSE_STEP,
+    FINE_STEP,
+    LIGHT_STEP,
+    MOVE_STEP,
+    TURN_STEP,
+    differs_from_saved,
+    length_changed,
+    light_moved,
+    moved,
+    turned,
+    with_antialiasing_switched,
+    with_shading_switched,
+    zoomed,
+)
+from tui.commands import KeyCommands
+from tui.parse import parse_path, parse_size
+from tui.screens.choice import Answer, Choice
+from tui.screens.help import HelpScreen
+from tui.screens.main import MainScreen
+from tui.screens.prompt import Field, Prompt
+from tui.suggest import PathSuggester
+from tui.widgets.node_table import NodeTable
+from tui.widgets.viewport import Viewport
+
+# A drag across the picture's full height turns the model half round, or moves it by about
+# the height of the arm in view at scale 1.
+DRAG_TURN = 180.0  # degrees per picture height
+DRAG_MOVE = 70.0  # cm per picture height
+
+TURN = Binding.Group("Turn", compact=True)
+
+
+class BicepsApp(App[None]):
+    CSS_PATH = "app.tcss"
+    TITLE = "biceps"
+    COMMANDS = App.COMMANDS | {KeyCommands}
+    BINDINGS = [
+        Binding("left", f"turn({-TURN_STEP}, 0, 0)", "Turn left", group=TURN),
+        Binding("right", f"turn({TURN_STEP}, 0, 0)", "Turn right", group=TURN),
+        Binding("up", f"turn(0, {-TURN_STEP}, 0)", "Tip the top away", group=TURN),
+        Binding("down", f"turn(0, {TURN_STEP}, 0)", "Tip the top towards you", group=TURN),
+        Binding("left_square_bracket", f"turn(0, 0, {TURN_STEP})", "Roll anticlockwise",
+                show=False),
+        Binding("right_square_bracket", f"turn(0, 0, {-TURN_STEP})", "Roll clockwise",
+                show=False),
+        Binding("shift+left,a", f"move({-MOVE_STEP}, 0)", "Move left", show=False),
+        Binding("shift+right,d", f"move({MOVE_STEP}, 0)", "Move right", show=False),
+        Binding("shift+up,w", f"move(0, {MOVE_STEP})", "Move up", show=False),
+        Binding("shift+down,s", f"move(0, {-MOVE_STEP})", "Move down", show=False),
+        Binding("plus,equals_sign", "zoom(1)", "Scale up", show=False),
+        Binding("minus", "zoom(-1)", "Scale down", show=False),
+        Binding("c", f"change_length({-FINE_STEP})", "Contract"),
+        Binding("C", f"change_length({-COARSE_STEP})", f"Contract {COARSE_STEP:g} cm", show=False),
+        Binding("x", f"change_length({FINE_STEP})", "Stretch"),
+        Binding("X", f"change_length({COARSE_STEP})", f"Stretch {COARSE_STEP:g} cm", show=False),
+        Binding("j", f"move_light({-LIGHT_STEP}, 0, 0)", "Light to the left", show=False),
+        Binding("l", f"move_light({LIGHT_STEP}, 0, 0)", "Light to the right", show=False),
+        Binding("i", f"move_light(0, {LIGHT_STEP}, 0)", "Light up", show=False),
+        Binding("k", f"move_light(0, {-LIGHT_STEP}, 0)", "Light down", show=False),
+        Binding("u", f"move_light(0, 0, {LIGHT_STEP})", "Light towards you", show=False),
+        Binding("o", f"move_light(0, 0, {-LIGHT_STEP})", "Light away from you", show=False),
+        Binding("r", "reset_view", "Reset the view", show=False),
+        Binding("g", "switch_shading", "Shading: Gouraud or Phong", show=False),
+        Binding("m", "switch_antialiasing", "Anti-aliasing on or off", show=False),
+        Binding("e", "export", "Export"),
+        Binding("ctrl+s", "save", "Save"),
+        Binding("ctrl+d", "save_as", "Save as", show=False),
+        Binding("ctrl+o", "open", "Open", show=False),
+        Binding("question_mark,f1", "help", "Help"),
+        Binding("q", "quit", "Quit"),
+        Binding("ctrl+q", "quit", "Quit", show=False, priority=True),
+    ]
+
+    scene: var[Scene] = var(None)
+    unsaved: var[bool] = var(False)
+
+    def __init__(self, config: Config) -> None:
+        super().__init__()
+        self.config = config
+        self._saved = Scene.of(config)
+        self.set_reactive(BicepsApp.scene, self._saved)
+        self.sub_title = config.path.name
+        self._export_path = f"{config.path.stem}.png"
+        self._export_size = "1920x1080"
+        self._last_export: Path | None = None
+        self._notified_until: dict[str, float] = {}
+
+    def get_default_screen(self) -> Screen:
+        return MainScreen()
+
+    def watch_scene(self, scene: Scene) -> None:
+        self.unsaved = differs_from_saved(scene, self._saved)
+
+    def notify(
+        self,
+        message: str,
+        *,
+        title: str = "",
+        severity: SeverityLevel = "information",
+        timeout: float | None = None,
+        markup: bool = True,
+    ) -> None:
+        # A key held at a limit repeats the same refusal many times a second: say it once
+        # and not again until it has had time to be read.
+        now = monotonic()
+        if self._notified_until.get(message, 0.0) > now:
+            return
+        timeout = self.NOTIFICATION_TIMEOUT if timeout is None else timeout
+        self._notified_until = {
+            text: until for text, until in self._notified_until.items() if until > now
+        }
+        self._notified_until[message] = now + timeout
+        super().notify(message, title=title, severity=severity, timeout=timeout, markup=markup)
+
+    def _refuse(self, reason: str) -> None:
+        self.notify(reason, severity="warning", markup=False)
+
+    def _change(self, change: Callable[[Scene], Scene]) -> None:
+        try:
+            self.scene = change(self.scene)
+        except BicepsError as error:
+            self._refuse(str(error))
+
+    def action_turn(self, yaw: float, pitch: float, roll: float) -> None:
+        self._change(partial(turned, yaw=yaw, pitch=pitch, roll=roll))
+
+    def action_move(self, right: float, up: float) -> None:
+        self._change(partial(moved, right=right, up=up))
+
+    def action_zoom(self, steps: float) -> None:
+        self._change(partial(zoomed, steps=steps))
+
+    def action_change_length(self, change: float) -> None:
+        try:
+            self.scene, limit = length_changed(self.scene, change)
+        except BicepsError as error:
+            self._refuse(str(error))
+            return
+        if limit is not None:
+            self._refuse(limit)
+
+    def action_move_light(self, x: float, y: float, z: float) -> None:
+        self._change(partial(light_moved, x=x, y=y, z=z))
+
+    def action_reset_view(self) -> None:
+        self._change(lambda scene: replace(scene, view=self.config.view))
+
+    def action_switch_shading(self) -> None:
+        self._change(with_shading_switched)
+
+    def action_switch_antialiasing(self) -> None:
+        self._change(with_antialiasing_switched)
+
+    @on(Viewport.Dragged)
+    def _drag(self, message: Viewport.Dragged) -> None:
+        if message.pan:
+            distance = DRAG_MOVE / self.scene.view.scale
+            self.action_move(message.across * distance, -message.down * distance)
+        else:
+            self.action_turn(message.across * DRAG_TURN, message.down * DRAG_TURN, 0.0)
+
+    @on(Viewport.Zoomed)
+    def _zoom(self, message: Viewport.Zoomed) -> None:
+        self.action_zoom(message.steps)
+
+    @on(NodeTable.ChangeRequested)
+    def _edit_muscle(self, message: NodeTable.ChangeRequested) -> None:
+        self._change(
+            lambda scene: scene.with_arm(scene.arm.with_muscle(message.change(scene.arm.muscle)))
+        )
+
+    def action_help(self) -> None:
+        if not isinstance(self.screen, HelpScreen):
+            self.push_screen(HelpScreen())
+
+    def action_save(self) -> None:
+        self._save()
+
+    def _save(self, path: Path | None = None) -> bool:
+        scene = self.scene
+        try:
+            config = save_config(self.config, scene.arm, scene.view, scene.light, scene.render,
+                                 path)
+        except BicepsError as error:
+            self.notify(str(error), title="Not saved", severity="error", markup=False)
+            return False
+        self.config = config
+        self._saved = scene
+        self.unsaved = False
+        self.sub_title = config.path.name
+        self.notify(f"Saved {config.path}", markup=False)
+        return True
+
+    @work
+    async def action_save_as(self) -> None:
+        file = Field("File", str(self.config.path), parse_path, PathSuggester((".toml",)))
+        answer = await self.push_screen_wait(Prompt("Save as", [file], accept="Save"))
+        if answer is None:
+            return
+        (path,) = answer
+        if os.path.exists(path) and not _same_file(path, self.config.path):
+            if not await self._confirm_replace(path):
+                return
+        self._save(path)
+
+    @work
+    async def action_open(self) -> None:
+        file = Field("File", str(self.config.path), parse_path, PathSuggester((".toml",)))
+        answer = await self.push_screen_wait(Prompt("Open a configuration", [file], accept="Open"))
+        if answer is None:
+            return
+        try:
+            config = load_config(answer[0])
+        except BicepsError as error:
+            self.notify(str(error), title="Not opened", severity="error", markup=False)
+            return
+        if self.unsaved and not await self._unsaved_edits_settled("open"):
+            return
+        self.config = config
+        self._saved = Scene.of(config)
+        self.scene = self._saved
+        self.sub_title = config.path.name
+        self._export_path = f"{config.path.stem}.png"
+
+    @work
+    async def action_export(self) -> None:
+        fields = [
+            Field("File", self._export_path, parse_path, PathSuggester((".png",))),
+            Field("Size in pixels", self._export_size, parse_size),
+        ]
+        prompt = Prompt("Export a PNG", fields, accept="Export",
+                        check=lambda path, size: check_writable(path, ".png"))
+        answer = await self.push_screen_wait(prompt)
+        if answer is None:
+            return
+        path, (width, height) = answer
+        self._export_path, self._export_size = str(path), f"{width}x{height}"
+        replacing = os.path.exists(path) and path != self._last_export
+        if replacing and not await self._confirm_replace(path):
+            return
+        self._last_export = path
+        self._write_picture(self.scene, path, width, height)
+
+    @work(thread=True, group="export")
+    def _write_picture(self, scene: Scene, path: Path, width: int, height: int) -> None:
+        try:
+            write_png(path, SceneRenderer().render(scene, width, height))
+        except BicepsError as error:
+            reason = str(error)
+        except MemoryError:
+            reason = f"not enough memory for a {width}x{height} picture"
+        except Exception as error:
+            # Whatever breaks in an export, the app and the edits in it must survive.
+            reason = f"{type(error).__name__}: {error}"
+        else:
+            self.call_from_thread(self.notify, f"Exported {path} ({width}x{height})", markup=False)
+            return
+        self.call_from_thread(self.notify, reason, title="Not exported", severity="error",
+                              markup=False)
+
+    @work
+    async def action_quit(self) -> None:
+        if isinstance(self.screen, Choice):
+            return  # ctrl+q again while the question is up: it is still waiting for an answer
+        if self.unsaved and not await self._unsaved_edits_settled("quit"):
+            return
+        self.exit()
+
+    async def _unsaved_edits_settled(self, doing: str) -> bool:
+        """Ask what to do with unsaved edits before doing something that drops them.
+
+        True when they are saved or may be dropped; False to stay as we are.
+        """
+        answers = [
+            Answer("s", f"Save, then {doing}", "save", "primary"),
+            Answer("d", "Discard", "discard", "error"),
+        ]
+        question = f"{self.config.path.name} has unsaved edits."
+        answer = await self.push_screen_wait(Choice("Unsaved edits", question, answers))
+        if answer == "save":
+            return self._save()
+        return answer == "discard"
+
+    async def _confirm_replace(self, path: Path) -> bool:
+        answers = [Answer("y", "Replace it", "replace", "error")]
+        question = f"{path} already exists."
+        return await self.push_screen_wait(Choice("Replace?", question, answers)) == "replace"
+
+
+def _same_file(path: Path, other: Path) -> bool:
+    return os.path.exists(other) and os.path.samefile(path, other)
+
+
+def run_app(config: Config, colors: str = "auto") -> None:
+    """Run the app on ``config``; ``colors`` is ``auto``, ``truecolor`` or ``256``."""
+    if colors != "auto":
+        os.environ["TEXTUAL_COLOR_SYSTEM"] = colors
+        # Textual reads the variable once, when it is first imported, which has happened
+        # by now; its console takes the colour system from this constant.
+        textual.constants.COLOR_SYSTEM = colors
+    BicepsApp(config).run()

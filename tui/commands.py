@@ -1,0 +1,43 @@
+"""The command palette offers every key's action, found by its description.
+
+The commands are read from the bindings themselves, so a new key is in the palette the
+moment it is bound, with the key shown beside it.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+from typing import Iterator
+
+from textual.binding import Binding
+from textual.command import DiscoveryHit, Hit, Hits, Provider
+from textual.dom import DOMNode
+
+from tui.widgets.node_table import NodeTable
+
+
+class KeyCommands(Provider):
+    def _commands(self) -> Iterator[tuple[str, str, partial]]:
+        app = self.app
+        owners: list[DOMNode] = [app, *self.screen.query(NodeTable)]
+        for owner in owners:
+            keys: dict[str, list[str]] = {}
+            descriptions: dict[str, str] = {}
+            for binding in Binding.make_bindings(type(owner).BINDINGS):
+                if binding.description:
+                    keys.setdefault(binding.action, []).append(app.get_key_display(binding))
+                    descriptions[binding.action] = binding.description
+            for action, shown in keys.items():
+                run = partial(app.run_action, action, owner)
+                yield descriptions[action], ", ".join(shown), run
+
+    async def discover(self) -> Hits:
+        for name, keys, run in self._commands():
+            yield DiscoveryHit(name, run, help=keys)
+
+    async def search(self, query: str) -> Hits:
+        matcher = self.matcher(query)
+        for name, keys, run in self._commands():
+            score = matcher.match(name)
+            if score > 0:
+                yield Hit(score, matcher.highlight(name), run, help=keys)

@@ -1,0 +1,91 @@
+"""A small form in a dialog: a few typed values, each read and checked before it is accepted.
+
+A value that cannot be read, or that the model refuses, gets a notification and the dialog
+stays open with the text as typed, so nothing is lost and nothing changes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable, Generic, Sequence, TypeVar
+
+from textual import on
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Horizontal, Vertical
+from textual.screen import ModalScreen
+from textual.suggester import Suggester
+from textual.widgets import Button, Input, Label
+
+from engine.errors import BicepsError
+
+T = TypeVar("T")
+
+
+@dataclass(frozen=True)
+class Field(Generic[T]):
+    label: str
+    text: str  # what the input starts with
+    parse: Callable[[str], T]  # raises ValueError saying what is wrong
+    suggester: Suggester | None = None
+
+
+class Prompt(ModalScreen[tuple[Any, ...] | None]):
+    """Dismisses with the parsed values of every field, or ``None`` when cancelled.
+
+    ``check``, given the parsed values, raises :class:`BicepsError` if the model would
+    refuse them, so the refusal is said while the typed text is still there to fix.
+    """
+
+    BINDINGS = [Binding("escape", "dismiss", "Cancel")]
+
+    def __init__(
+        self,
+        title: str,
+        fields: Sequence[Field],
+        *,
+        check: Callable[..., object] | None = None,
+        accept: str = "OK",
+    ) -> None:
+        super().__init__(classes="dialog")
+        self._title = title
+        self._fields = fields
+        self._check = check
+        self._accept = accept
+
+    def compose(self) -> ComposeResult:
+        with Vertical(classes="dialog-box") as box:
+            box.border_title = self._title
+            for field in self._fields:
+                yield Label(field.label)
+                yield Input(field.text, suggester=field.suggester)
+            with Horizontal(classes="dialog-buttons"):
+                yield Button(self._accept, variant="primary", id="accept")
+                yield Button("Cancel (esc)", id="cancel")
+
+    @on(Input.Submitted)
+    @on(Button.Pressed, "#accept")
+    def _accept_values(self) -> None:
+        values = []
+        for field, box in zip(self._fields, self.query(Input)):
+            try:
+                values.append(field.parse(box.value))
+            except ValueError as error:
+                self._complain(box, f"{field.label}: {error}")
+                return
+        if self._check is not None:
+            try:
+                self._check(*values)
+            except BicepsError as error:
+                self.notify(str(error), severity="warning", markup=False)
+                return
+        self.dismiss(tuple(values))
+
+    @on(Button.Pressed, "#cancel")
+    def _cancel(self) -> None:
+        self.dismiss(None)
+
+    def _complain(self, box: Input, message: str) -> None:
+        box.add_class("-invalid")  # the input clears it itself at the next keystroke
+        box.focus()
+        self.notify(message, severity="warning", markup=False)

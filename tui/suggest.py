@@ -1,0 +1,38 @@
+"""Completing file names in dialogs, as a shell's tab does (accept with → or end)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from textual.suggester import Suggester
+
+
+class PathSuggester(Suggester):
+    """Suggests the first name in the typed directory that starts with what follows the last /."""
+
+    def __init__(self, suffixes: tuple[str, ...] = ()) -> None:
+        # No cache: the directory may change while the dialog is open (an export lands).
+        super().__init__(use_cache=False, case_sensitive=True)
+        self._suffixes = suffixes
+
+    async def get_suggestion(self, value: str) -> str | None:
+        head = value[: value.rfind("/") + 1]
+        start = value[len(head) :]
+        directory = Path(head).expanduser() if head else Path(".")
+        try:
+            entries = sorted(directory.iterdir())
+        except OSError:
+            return None
+        for entry in entries:
+            name = entry.name
+            if not name.startswith(start) or (name.startswith(".") and not start.startswith(".")):
+                continue
+            try:
+                is_dir = entry.is_dir()
+            except OSError:
+                continue
+            if is_dir:
+                return f"{head}{name}/"
+            if not self._suffixes or entry.suffix.lower() in self._suffixes:
+                return f"{head}{name}"
+        return None

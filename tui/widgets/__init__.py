@@ -1,0 +1,1 @@
+"""The main screen's widgets: the picture, the node table and the numbers."""

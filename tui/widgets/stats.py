@@ -1,0 +1,25 @@
+"""The numbers that matter as the muscle changes: length, elbow, volume, thickness."""
+
+from __future__ import annotations
+
+from rich.table import Table
+from textual.widgets import Static
+
+from engine.arm import Arm
+
+
+class Stats(Static):
+    def show(self, arm: Arm) -> None:
+        muscle = arm.muscle
+        shortest, longest = arm.length_range()
+        table = Table.grid(padding=(0, 1))
+        table.add_column(style="dim", no_wrap=True)
+        table.add_column(no_wrap=True)
+        table.add_row("length", f"{muscle.length:.2f} cm")
+        table.add_row("  range", f"{shortest:.2f} to {longest:.2f}")
+        table.add_row("flexion", f"{arm.flexion:.1f}°")
+        table.add_row("volume", f"{muscle.volume:.3f} cm³")
+        table.add_row("  error", f"{muscle.volume_error:.1e} ({muscle.volume_mode})")
+        table.add_row("max radius", f"{muscle.max_radius:.3f} cm")
+        table.add_row("girth", f"{muscle.girth:.2f} cm")
+        self.update(table)
