@@ -27,6 +27,27 @@ from engine.scene import Scene, SceneRenderer
 
 MAX_SIDE = 16384
 
+
+class _FiniteFloat(click.ParamType):
+    """A number that is not NaN or infinite (click's float, even a FloatRange, lets them by),
+    optionally within ``[low, high]``."""
+
+    name = "number"
+
+    def __init__(self, low: float = -math.inf, high: float = math.inf) -> None:
+        self.low, self.high = low, high
+
+    def convert(self, value: Any, param: Any, ctx: Any) -> float:
+        number = click.FLOAT.convert(value, param, ctx)
+        if not math.isfinite(number):
+            self.fail(f"must be a finite number, got {value!r}", param, ctx)
+        if not self.low <= number <= self.high:
+            self.fail(f"must be {self.low:g} to {self.high:g}, got {value!r}", param, ctx)
+        return number
+
+
+FINITE = _FiniteFloat()
+
 USAGE_ERROR = 2
 
 
@@ -63,9 +84,9 @@ config_argument = click.argument(
 
 def pose_options(command: Callable) -> Callable:
     """``--length`` / ``--flexion``: the pose to show, instead of the config's own."""
-    command = click.option("--flexion", type=float, help="Elbow flexion in degrees (0 = straight).")(command)
-    command = click.option("--length", type=float, help="Muscle length in cm.")(command)
-    return command
+    flexion = click.option("--flexion", type=FINITE, help="Elbow flexion in degrees (0 = straight).")
+    length = click.option("--length", type=FINITE, help="Muscle length in cm.")
+    return length(flexion(command))
 
 
 def posed(arm: Arm, length: float | None, flexion: float | None) -> Arm:
@@ -175,10 +196,10 @@ def _parse_point(_ctx: Any, _param: Any, value: str | None) -> tuple[float, floa
 def view_options(command: Callable) -> Callable:
     """Options that override the config's view, light and rendering."""
     options = [
-        click.option("--yaw", type=float, help="Turn about the vertical axis, degrees."),
-        click.option("--pitch", type=float, help="Tilt about the horizontal axis, degrees."),
-        click.option("--roll", type=float, help="Roll about the line of sight, degrees."),
-        click.option("--scale", type=click.FloatRange(min=0.01, max=100), help="Zoom factor."),
+        click.option("--yaw", type=FINITE, help="Turn about the vertical axis, degrees."),
+        click.option("--pitch", type=FINITE, help="Tilt about the horizontal axis, degrees."),
+        click.option("--roll", type=FINITE, help="Roll about the line of sight, degrees."),
+        click.option("--scale", type=_FiniteFloat(0.01, 100), help="Zoom factor."),
         click.option("--light", callback=_parse_point, metavar="X,Y,Z",
                      help="Light position in world space, cm."),
         click.option("--ssaa", type=click.IntRange(1, 4), help="Supersampling factor, 1 to 4."),

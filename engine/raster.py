@@ -78,11 +78,9 @@ the highlight threshold, ``(1 / (2 255 specular)) ^ (1 / shininess)``, ``n.h`` g
 highlight under half a colour level, so Phong skips its ``pow``."""
 
 
-# ---- vertex stage
-#
-# Per-vertex buffers are component-major, (3, n) rather than the mesh's (n, 3), and every
-# matrix is read into registers before its loop: then LLVM vectorises the loops (AVX),
-# about five times faster than the same loops over rows.
+# The vertex stage. Per-vertex buffers are component-major, (3, n) rather than the mesh's
+# (n, 3), and every matrix is read into registers before its loop: then LLVM vectorises
+# the loops (AVX), about five times faster than the same loops over rows.
 
 
 @ngjit
@@ -232,9 +230,6 @@ def phong_vertices(world, world_normals, albedo, attributes):
             attributes[6 + c, i] = 255.0 * albedo[c, i]
 
 
-# ---- buffers
-
-
 @ngjit
 def clear(pixels, depths, width, red, green, blue):
     """Fill pixels: (3 h w,) uint8 with (red, green, blue) and depths: (h w,) float32 with 0
@@ -279,9 +274,6 @@ def downsample(source, factor, target, width):
                 for k in range(factor):
                     total += columns[3 * (factor * x + k) + c]
                 target[np.uint64(3 * (y * width + x) + c)] = (total * reciprocal) >> 24
-
-
-# ---- coverage
 
 
 @ngjit
@@ -382,11 +374,9 @@ def _may_cover(x0, y0, x1, y1, x2, y2, width, height):
     return first <= last and left <= right
 
 
-# ---- span shaders
-#
-# Each fills the pixels of one row, flat offsets start to end (exclusive, uint64), whose
-# first centre is (xc, yc), from planes: (1 + a, 3) float64, the rows (value at the origin,
-# d/dx, d/dy) of the depth and of the a attributes.
+# Span shaders: each fills the pixels of one row, flat offsets start to end (exclusive,
+# uint64), whose first centre is (xc, yc), from planes: (1 + a, 3) float64, the rows
+# (value at the origin, d/dx, d/dy) of the depth and of the a attributes.
 
 
 @ngjit
@@ -496,9 +486,6 @@ def count_overdraw(pixels, depths, start, end, xc, yc, planes, lighting):
         pixels[np.uint64(3) * i] += 1
 
 
-# ---- triangles
-
-
 @ngjit
 def _set_plane(planes, row, x0, y0, e1x, e1y, e2x, e2y, inv_det, v0, v1, v2):
     """planes[row] = (c, d/dx, d/dy) of the plane ``c + x d/dx + y d/dy`` through
@@ -598,7 +585,7 @@ def rasterize_overdraw(triangles, screen_xy, screen_z, outcodes, attributes, lig
                pixels, depths, width)
 
 
-# ---- clipping: a separate pass, compiled the first time a frame needs it
+# Clipping is a separate pass, compiled the first time a frame needs it.
 
 
 @ngjit

@@ -59,6 +59,10 @@ def test_snapshot_writes_a_png_of_the_asked_size(tmp_path):
         (["--shading", "flat"], "--shading"),
         (["--length", "30", "--flexion", "20"], "not both"),
         (["--flexion", "170"], "outside the joint's range"),
+        (["--flexion", "nan"], "--flexion"),
+        (["--yaw", "inf"], "--yaw"),
+        (["--scale", "nan"], "--scale"),
+        (["--scale", "0"], "0.01 to 100"),
     ],
 )
 def test_snapshot_refuses_bad_arguments_and_writes_nothing(tmp_path, args, message):

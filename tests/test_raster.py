@@ -18,9 +18,6 @@ from engine import raster
 from engine.render import Renderer
 from engine.transforms import Camera, Light, model_matrix, transform_points, viewport
 
-# ---- helpers
-
-
 def reference_coverage(triangle, width, height):
     """The pixels (x, y) whose centres the top-left rule puts inside ``triangle``, three
     (x, y) screen points (y down, any winding, non-degenerate)."""
@@ -127,7 +124,7 @@ def sphere(subdivisions=3, inward=False):
     return vertices, vertices.copy(), faces.astype(np.int32)  # a unit sphere: normal = position
 
 
-# ---- projection
+# Projection.
 
 
 def test_projection_applies_the_viewport_and_snaps_to_a_256th_of_a_pixel():
@@ -155,7 +152,7 @@ def test_outcodes_name_the_planes_a_vertex_is_outside():
     assert codes.tolist() == [raster.NEAR, raster.FAR, raster.RIGHT, raster.INVALID, 0]
 
 
-# ---- coverage: the top-left rule
+# Coverage: the top-left rule.
 
 EDGE_CASES = {
     # Edges through pixel centres: the top and left ones count, the slanted right one not.
@@ -210,7 +207,7 @@ def test_back_faces_and_degenerate_triangles_draw_nothing():
     assert counts(picture).sum() == 0
 
 
-# ---- coverage: shared edges, exactly once
+# Coverage: shared edges, exactly once.
 
 
 def test_two_triangles_sharing_a_diagonal_cover_the_screen_exactly_once():
@@ -319,7 +316,7 @@ def test_triangles_far_beyond_the_guard_band_still_tile_the_view():
     assert np.all(counts(picture) == 1)
 
 
-# ---- depth
+# Depth.
 
 
 def test_the_nearer_triangle_wins_whatever_the_order():
@@ -335,7 +332,7 @@ def test_the_nearer_triangle_wins_whatever_the_order():
     assert (first[..., 2] == 255).any()  # and blue shows where only it is
 
 
-# ---- shading
+# Shading.
 
 
 def test_gouraud_colour_is_linear_along_a_span():
@@ -392,7 +389,7 @@ def test_phong_adds_a_highlight_where_gouraud_would_not_have_one():
     assert abs(int(phong[1, 8, 0]) - int(phong[8, 1, 0])) <= 1  # symmetric about the centre
 
 
-# ---- extreme poses
+# Extreme poses.
 
 
 @pytest.mark.parametrize("pose", ["behind", "straddling", "huge", "tiny", "flat", "nan"])
@@ -428,7 +425,7 @@ def test_extreme_poses_draw_sensibly_and_never_fail(pose):
         assert is_background[12, 16]  # through the hole, the inside faces away: culled
 
 
-# ---- supersampling
+# Supersampling.
 
 
 def test_downsample_averages_each_block_rounding_to_nearest():
@@ -451,7 +448,7 @@ def test_supersampling_averages_a_half_covered_pixel():
     np.testing.assert_array_equal(picture[:, :, 0], [[255, 255, 128, 0]] * 4)
 
 
-# ---- the renderer
+# The renderer.
 
 
 def test_render_returns_a_read_only_view_of_the_picture():
