@@ -117,13 +117,20 @@ def main() -> None:
     show_default=True,
     help="Colour depth; auto honours TEXTUAL_COLOR_SYSTEM and COLORTERM.",
 )
+@click.option(
+    "--fps",
+    type=click.IntRange(min=1),
+    default=None,
+    help="Most frames a second (default: as fast as the terminal takes them, up to "
+    "Textual's 60, which TEXTUAL_FPS changes).",
+)
 @_refusals_exit_2
-def app(config: Path, colors: str) -> None:
+def app(config: Path, colors: str, fps: int | None) -> None:
     """Open the terminal app on CONFIG (default: configs/biceps.toml)."""
     loaded = load_config(config)  # fail here, before the terminal switches screens
     from tui.app import run_app
 
-    run_app(loaded, colors=colors)
+    run_app(loaded, colors=colors, fps=fps)
 
 
 @main.command()

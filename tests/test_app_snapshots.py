@@ -38,3 +38,26 @@ def test_help_screen(snap_compare, config):
         await pilot.press("question_mark")
 
     assert snap_compare(BicepsApp(config), terminal_size=(100, 30), run_before=open_help)
+
+
+def test_a_notification_stays_over_the_picture_as_it_turns(snap_compare, config):
+    async def notify_then_turn(pilot: Pilot) -> None:
+        await _picture_drawn(pilot)
+        pilot.app.notify("A note over the picture, which new frames must not paint over.")
+        await pilot.pause()
+        # Bigger, and down and right: the arm reaches under the note as it changes.
+        await pilot.press("plus", "plus", "plus", *"ssssss", *"dddddd")
+        await _picture_drawn(pilot)
+
+    assert snap_compare(BicepsApp(config), terminal_size=(100, 30), run_before=notify_then_turn)
+
+
+def test_a_dialog_stays_over_the_picture_as_it_turns(snap_compare, config):
+    async def prompt_then_turn(pilot: Pilot) -> None:
+        await _picture_drawn(pilot)
+        await pilot.press("e")
+        await pilot.pause()
+        pilot.app.action_turn(30.0, 10.0, 0.0)  # keys go to the dialog now
+        await _picture_drawn(pilot)
+
+    assert snap_compare(BicepsApp(config), terminal_size=(100, 30), run_before=prompt_then_turn)

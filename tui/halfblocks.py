@@ -2,13 +2,19 @@
 
 The upper half block "▀" takes the top pixel as its foreground and the bottom one as its
 background. Cells with two equal pixels are written as a plain space on that background,
-which sends half the colour codes over the wire. Neighbouring cells that look the same
+which leaves the foreground out of the colour codes. Neighbouring cells that look the same
 are merged into one segment, so a flat background costs one segment per line.
+
+Kernels pack each cell's two pixels into one number, find the rows that differ from the
+last frame and the runs of equal cells in them; Python only turns runs into segments, with
+one cached :class:`~rich.style.Style` per cell colour. Textual writes the colour codes
+itself, so it still downgrades them for a 256-colour terminal, and composes the lines with
+whatever is drawn over the picture.
 """
 
 from __future__ import annotations
 
-from functools import lru_cache
+from dataclasses import dataclass
 
 import numpy as np
 from rich.color import Color
@@ -16,46 +22,146 @@ from rich.segment import Segment
 from rich.style import Style
 from textual.strip import Strip
 
+from engine.jit import ngjit
+
 UPPER_HALF = "▀"
+BOTTOM = (1 << 24) - 1  # a cell's bottom pixel, as packed below
 
 
-def frame_to_strips(frame: np.ndarray) -> list[Strip]:
-    """One strip per pair of pixel rows of ``frame`` ((2 h, w, 3) uint8): h strips of w cells."""
-    pixels = frame.astype(np.int64)
-    packed = (pixels[..., 0] << 16) | (pixels[..., 1] << 8) | pixels[..., 2]
-    # One number per cell: the top pixel's colour in the high bits, the bottom one's below.
-    cells = (packed[0::2] << 24) | packed[1::2]
-    width = cells.shape[1]
-    strips = []
-    for row in cells:
-        starts = np.flatnonzero(np.diff(row, prepend=-1))
-        lengths = np.diff(starts, append=width)
-        strips.append(
-            Strip(
-                [
-                    _cell_run(cell, length)
-                    for cell, length in zip(row[starts].tolist(), lengths.tolist())
-                ],
-                width,
-            )
-        )
-    return strips
+@ngjit
+def pack_cells(frame, cells):
+    """Each cell's two pixels as one number: ``top << 24 | bottom``, each ``r << 16 | g << 8 | b``.
+
+    frame: (2 h, w, 3) uint8; cells: (h, w) int64, written.
+    """
+    height, width = cells.shape
+    for y in range(height):
+        for x in range(width):
+            top, bottom = frame[2 * y, x], frame[2 * y + 1, x]
+            cells[y, x] = (
+                (np.int64(top[0]) << 40) | (np.int64(top[1]) << 32) | (np.int64(top[2]) << 24)
+                | (np.int64(bottom[0]) << 16) | (np.int64(bottom[1]) << 8) | np.int64(bottom[2])
+            )  # fmt: skip
 
 
-def _cell_run(cell: int, length: int) -> Segment:
-    top, bottom = cell >> 24, cell & 0xFFFFFF
-    text = " " if top == bottom else UPPER_HALF
-    return Segment(text * length, _style(cell))
+@ngjit
+def mark_changed_rows(cells, previous, changed):
+    """``changed[y]``: whether row ``y`` of ``cells`` differs from that of ``previous``.
+
+    cells, previous: (h, w) int64; changed: (h,) bool, written.
+    """
+    height, width = cells.shape
+    for y in range(height):
+        changed[y] = False
+        for x in range(width):
+            if cells[y, x] != previous[y, x]:
+                changed[y] = True
+                break
 
 
-@lru_cache(maxsize=65536)
-def _style(cell: int) -> Style:
-    top, bottom = cell >> 24, cell & 0xFFFFFF
-    background = _colour(bottom)
-    if top == bottom:
-        return Style(bgcolor=background)
-    return Style(color=_colour(top), bgcolor=background)
+@ngjit
+def find_runs(cells, changed, starts, counts):
+    """Where the runs of equal cells begin, in each changed row: ``starts[y, :counts[y]]``.
+
+    cells: (h, w) int64; changed: (h,) bool; starts: (h, w) int32 and counts: (h,) int32,
+    written (``counts[y]`` is 0 for a row that has not changed).
+    """
+    height, width = cells.shape
+    for y in range(height):
+        count = 0
+        if changed[y]:
+            for x in range(width):
+                if x == 0 or cells[y, x] != cells[y, x - 1]:
+                    starts[y, count] = x
+                    count += 1
+        counts[y] = count
+
+
+class _Styles(dict):
+    """One style per cell colour, made on first use."""
+
+    def __missing__(self, cell: int) -> Style:
+        top, bottom = cell >> 24, cell & BOTTOM
+        if top == bottom:
+            style = Style(bgcolor=_colour(bottom))
+        else:
+            style = Style(color=_colour(top), bgcolor=_colour(bottom))
+        self[cell] = style
+        return style
 
 
 def _colour(rgb: int) -> Color:
     return Color.from_rgb(rgb >> 16, (rgb >> 8) & 0xFF, rgb & 0xFF)
+
+
+def cell_text(cell: int, length: int) -> str:
+    """``length`` cells of the packed colour ``cell``: half blocks, or spaces if the two
+    halves match."""
+    return (" " if cell >> 24 == cell & BOTTOM else UPPER_HALF) * length
+
+
+@dataclass(frozen=True)
+class Lines:
+    """A frame as terminal lines, and which of them differ from the frame before."""
+
+    strips: list[Strip]
+    changed: list[tuple[int, int]]  # (first row, number of rows), in order
+
+
+class HalfBlocks:
+    """Turns frames into lines, making again only the lines that changed.
+
+    Keeps the last frame's cells and lines: not thread-safe, give each thread its own.
+    """
+
+    # Enough for every colour of a few frames; a turning model keeps making new ones.
+    MAX_STYLES = 1 << 17
+
+    def __init__(self) -> None:
+        self._cells = np.zeros((0, 0), np.int64)
+        self._previous = np.zeros((0, 0), np.int64)
+        self._strips: list[Strip] = []
+        self._styles = _Styles()
+
+    def lines(self, frame: np.ndarray) -> Lines:
+        """The lines of ``frame`` ((2 h, w, 3) uint8): h lines of w cells."""
+        height, width = frame.shape[0] // 2, frame.shape[1]
+        self._cells, self._previous = self._previous, self._cells
+        if self._cells.shape != (height, width):
+            self._cells = np.empty((height, width), np.int64)
+        pack_cells(frame, self._cells)
+        changed = np.ones(height, np.bool_)
+        if self._previous.shape == self._cells.shape:
+            mark_changed_rows(self._cells, self._previous, changed)
+        starts = np.empty((height, width), np.int32)
+        counts = np.empty(height, np.int32)
+        find_runs(self._cells, changed, starts, counts)
+        if len(self._styles) > self.MAX_STYLES:
+            self._styles.clear()
+        # A frame of another size changes every row, so no old strip is kept from it.
+        old = self._strips if len(self._strips) == height else [None] * height
+        strips = [
+            self._strip(self._cells[y], starts[y, : counts[y]]) if row_changed else strip
+            for y, (row_changed, strip) in enumerate(zip(changed.tolist(), old))
+        ]
+        self._strips = strips
+        return Lines(strips, _spans(changed))
+
+    def _strip(self, cells: np.ndarray, starts: np.ndarray) -> Strip:
+        width = len(cells)
+        styles = self._styles
+        ends = starts[1:].tolist() + [width]
+        return Strip(
+            [
+                Segment(cell_text(cell, end - start), styles[cell])
+                for cell, start, end in zip(cells[starts].tolist(), starts.tolist(), ends)
+            ],
+            width,
+        )
+
+
+def _spans(changed: np.ndarray) -> list[tuple[int, int]]:
+    """The runs of True in ``changed`` as (first, length)."""
+    edges = np.flatnonzero(np.diff(changed.astype(np.int8), prepend=0, append=0))
+    return [(start, end - start) for start, end in zip(edges[0::2].tolist(), edges[1::2].tolist())]
+

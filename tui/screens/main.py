@@ -8,7 +8,9 @@ from textual.events import Resize
 from textual.screen import Screen
 from textual.widgets import Footer, Static
 
+from engine.arm import Arm
 from engine.scene import Scene
+from tui.pacing import Pacer
 from tui.widgets.node_table import NodeTable
 from tui.widgets.stats import Stats
 from tui.widgets.viewport import Viewport
@@ -20,9 +22,14 @@ SMALLEST_USEFUL = (60, 16)
 class MainScreen(Screen[None]):
     AUTO_FOCUS = "#viewport"
 
+    def __init__(self, pacer: Pacer | None = None) -> None:
+        super().__init__()
+        self._pacer = pacer
+        self._arm: Arm | None = None
+
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
-            yield Viewport(id="viewport")
+            yield Viewport(self._pacer, id="viewport")
             with Vertical(id="side"):
                 yield Stats(id="stats")
                 yield NodeTable(id="nodes")
@@ -44,29 +51,14 @@ class MainScreen(Screen[None]):
         self.set_class(width < SMALLEST_USEFUL[0] or height < SMALLEST_USEFUL[1], "-too-small")
 
     def _show_scene(self, scene: Scene) -> None:
-        viewport = self.query_one(Viewport)
-        viewport.show(scene)
-        viewport.border_title, viewport.border_subtitle = _view_captions(scene)
-        self.query_one(Stats).show(scene.arm)
-        self.query_one(NodeTable).show(scene.arm.muscle)
+        self.query_one(Viewport).show(scene)
+        if scene.arm != self._arm:  # turning, moving and lighting leave the numbers be
+            self._arm = scene.arm
+            self.query_one(Stats).show(scene.arm)
+            self.query_one(NodeTable).show(scene.arm.muscle)
 
     def _show_file(self) -> None:
         self.query_one(Stats).border_title = self.app.sub_title + (
             " ● unsaved" if self.app.unsaved else ""
         )
 
-
-def _view_captions(scene: Scene) -> tuple[str, str]:
-    """How the model is turned and scaled; how it is shaded and lit."""
-    view, render = scene.view, scene.render
-    x, y, z = scene.light.position
-    antialiasing = f"AA {render.ssaa}x{render.ssaa}" if render.ssaa > 1 else "AA off"
-    return (
-        f"yaw {_degrees(view.yaw)} pitch {_degrees(view.pitch)} roll {_degrees(view.roll)}"
-        f" ×{view.scale:.2f}",
-        f"{render.shading} · {antialiasing} · light {x:g}, {y:g}, {z:g}",
-    )
-
-
-def _degrees(angle: float) -> str:
-    return f"{round(angle, 1):g}°"

@@ -61,8 +61,8 @@ class NodeTable(DataTable):
             self.clear()
             self.add_rows([[Text(text, justify="right") for text in row] for row in rows])
             self.move_cursor(row=min(cursor, len(rows) - 1), animate=False)
+            self.border_title = f"nodes ({len(rows)})"
         self._rows = rows
-        self.border_title = f"nodes ({len(rows)})"
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         # A table of rows has nothing to the sides: left and right fall through and turn

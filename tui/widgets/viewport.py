@@ -3,25 +3,34 @@
 A widget of ``w x h`` cells shows a frame of ``w x 2h`` pixels (cells are about twice as
 tall as wide, so the pixels are about square). One worker thread owns a
 :class:`~engine.scene.SceneRenderer` and serves requests through a :class:`LatestOnly`
-hand-over: however fast keys repeat or the mouse drags, it renders only the newest scene,
-and a new frame replaces the shown one in a single refresh.
+hand-over: however fast keys repeat or the mouse drags, it renders only the newest scene.
+It also turns the frame into lines, and a new frame refreshes only the lines that changed
+(none, if the picture is the same). The captions on the border say how the picture on
+screen was made, so they change with it.
+
+The next request is taken only when the :class:`~tui.pacing.Pacer` says the terminal has
+taken the last frame.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Sequence
 
 from rich.color import Color
 from rich.style import Style
 from textual import events, work
+from textual.filter import ANSIToTruecolor, LineFilter
+from textual.geometry import Region
 from textual.message import Message
 from textual.strip import Strip
 from textual.widget import Widget
 
 from engine.config import rgb
 from engine.scene import Scene, SceneRenderer
-from tui.halfblocks import frame_to_strips
+from tui.halfblocks import HalfBlocks, Lines
 from tui.latest_only import LatestOnly
+from tui.pacing import Pacer
 
 
 @dataclass(frozen=True)
@@ -38,10 +47,11 @@ class Viewport(Widget, can_focus=True):
     ALLOW_SELECT = False  # a drag turns the model; it does not select text
 
     class FrameRendered(Message, bubble=False):
-        def __init__(self, number: int, strips: list[Strip]) -> None:
+        def __init__(self, number: int, scene: Scene, lines: Lines) -> None:
             super().__init__()
             self.number = number
-            self.strips = strips
+            self.scene = scene
+            self.lines = lines
 
     class RenderFailed(Message, bubble=False):
         def __init__(self, number: int, reason: str) -> None:
@@ -69,14 +79,17 @@ class Viewport(Widget, can_focus=True):
             super().__init__()
             self.steps = steps
 
-    def __init__(self, *, id: str | None = None) -> None:
+    def __init__(self, pacer: Pacer | None = None, *, id: str | None = None) -> None:
         super().__init__(id=id)
+        self._pacer = pacer
         self._scene: Scene | None = None
         self._requests: LatestOnly[_Request] = LatestOnly()
         self._requested = 0  # the number of the newest request
         self._shown = 0  # the number of the request whose frame is on screen
         self._strips: list[Strip] = []
         self._background = Style()
+        self._captions = ("", "")
+        self._captioning = False
 
     @property
     def up_to_date(self) -> bool:
@@ -89,6 +102,8 @@ class Viewport(Widget, can_focus=True):
         self._request_frame()
 
     def on_mount(self) -> None:
+        if self._pacer is None:  # nothing to ask: frames follow one another at once
+            self._pacer = Pacer(lambda column: False, self.set_timer)
         self._render_frames()
 
     def on_unmount(self) -> None:
@@ -106,11 +121,14 @@ class Viewport(Widget, can_focus=True):
 
     @work(thread=True, exclusive=True, group="render")
     def _render_frames(self) -> None:
-        renderer = SceneRenderer()  # not thread-safe: this thread's own
+        # Both keep what they need from one frame to the next (buffers, the lines on
+        # screen), so they are this thread's own.
+        renderer, blocks = SceneRenderer(), HalfBlocks()
         while (request := self._requests.take()) is not None:
             try:
                 frame = renderer.render(request.scene, request.width, 2 * request.height)
-                message = self.FrameRendered(request.number, frame_to_strips(frame))
+                lines = blocks.lines(frame)
+                message = self.FrameRendered(request.number, request.scene, lines)
             except Exception as error:
                 # Whatever goes wrong in one frame, the app and the edits must survive it,
                 # and the next scene may well render: report it and carry on.
@@ -118,16 +136,49 @@ class Viewport(Widget, can_focus=True):
             self.post_message(message)
 
     def on_viewport_frame_rendered(self, message: FrameRendered) -> None:
-        self._requests.done()
-        self._strips = message.strips
+        self._strips = message.lines.strips
         self._shown = message.number
-        self.refresh()
+        if message.lines.changed:  # (no regions would mean all of them)
+            self.refresh(*(self._rows(y, rows) for y, rows in message.lines.changed))
+        self._caption(*_view_captions(message.scene))
+        # Once Textual has written this frame, the pacer says when the next may be made.
+        self.call_after_refresh(self._pacer.after_frame, self._requests.done)
 
     def on_viewport_render_failed(self, message: RenderFailed) -> None:
         self._requests.done()
         self._shown = message.number
         self.notify(f"The picture cannot be drawn: {message.reason}", severity="error",
                     markup=False)
+
+    def _caption(self, title: str, subtitle: str) -> None:
+        if (title, subtitle) == self._captions:
+            return
+        self._captions = title, subtitle
+        self._captioning = True  # see refresh
+        try:
+            self.border_title, self.border_subtitle = title, subtitle
+        finally:
+            self._captioning = False
+
+    def refresh(self, *regions: Region, **options) -> Viewport:
+        if self._captioning and not regions:
+            # Setting a border title repaints the whole widget, picture and all, though
+            # only the border's top and bottom rows show captions.
+            top, bottom = self.styles.gutter.top, self.styles.gutter.bottom
+            regions = (self._rows(-top, 1), self._rows(self.size.height + bottom - 1, 1))
+        return super().refresh(*regions, **options)
+
+    def _rows(self, y: int, rows: int) -> Region:
+        """Whole rows of the widget, borders included, from row ``y`` of the picture."""
+        # Textual writes a line from the widget's left edge even when only part of it is
+        # dirty, and crops it to do so: asking for the whole line costs less.
+        return Region(-self.styles.gutter.left, y, self.outer_size.width, rows)
+
+    def get_line_filters(self) -> Sequence[LineFilter]:
+        # The picture is all RGB: a filter turning ANSI colours into RGB would only copy
+        # every segment of every line. The others (NO_COLOR's, say) still apply.
+        return [line_filter for line_filter in super().get_line_filters()
+                if not isinstance(line_filter, ANSIToTruecolor)]
 
     def render_line(self, y: int) -> Strip:
         width = self.size.width
@@ -161,3 +212,19 @@ class Viewport(Widget, can_focus=True):
     def on_mouse_scroll_down(self, event: events.MouseScrollDown) -> None:
         event.stop()
         self.post_message(self.Zoomed(-1))
+
+
+def _view_captions(scene: Scene) -> tuple[str, str]:
+    """How the model is turned and scaled; how it is shaded and lit."""
+    view, render = scene.view, scene.render
+    x, y, z = scene.light.position
+    antialiasing = f"AA {render.ssaa}x{render.ssaa}" if render.ssaa > 1 else "AA off"
+    return (
+        f"yaw {_degrees(view.yaw)} pitch {_degrees(view.pitch)} roll {_degrees(view.roll)}"
+        f" ×{view.scale:.2f}",
+        f"{render.shading} · {antialiasing} · light {x:g}, {y:g}, {z:g}",
+    )
+
+
+def _degrees(angle: float) -> str:
+    return f"{round(angle, 1):g}°"

@@ -1,0 +1,91 @@
+"""The real app in a pseudo-terminal: the colour codes it writes, and the question after a frame."""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import re
+import select
+import struct
+import subprocess
+import sys
+import termios
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from engine.config import load_config
+from engine.scene import Scene, SceneRenderer
+from vt import Screen
+
+ROOT = Path(__file__).resolve().parent.parent
+UPPER_HALF = "▀".encode()
+
+
+def _first_picture(config: Path, *options: str, timeout: float = 120.0) -> bytes:
+    """What ``biceps app`` writes to a 100x30 terminal until its first picture is out."""
+    master, slave = os.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 100, 0, 0))
+    environment = {key: value for key, value in os.environ.items()
+                   if not key.startswith("TEXTUAL")}
+    environment.update(TERM="xterm-256color", COLORTERM="truecolor")
+    process = subprocess.Popen(
+        [sys.executable, "-m", "engine.cli", "app", str(config), *options],
+        stdin=slave, stdout=slave, stderr=slave, env=environment, cwd=ROOT,
+        start_new_session=True,
+    )  # fmt: skip
+    os.close(slave)
+    output = bytearray()
+    deadline = time.monotonic() + timeout
+    quiet_since = None
+    try:
+        while time.monotonic() < deadline:
+            ready, _, _ = select.select([master], [], [], 0.05)
+            if ready:
+                output += os.read(master, 1 << 16)
+                quiet_since = None
+            elif UPPER_HALF in output:
+                # The picture has begun: the frame is whole once the output pauses.
+                quiet_since = quiet_since or time.monotonic()
+                if time.monotonic() - quiet_since > 0.5:
+                    return bytes(output)
+        pytest.fail(f"no picture within {timeout} s:\n{output[-2000:]!r}")
+    finally:
+        process.kill()
+        process.wait()
+        os.close(master)
+
+
+def _colour_codes(output: bytes) -> list[str]:
+    return [code.decode() for code in re.findall(rb"\x1b\[([0-9;]*)m", output)]
+
+
+def test_a_256_colour_terminal_gets_palette_codes_only(config_path):
+    codes = _colour_codes(_first_picture(config_path, "--colors", "256"))
+    assert any("48;5;" in code for code in codes)
+    assert not any(re.search(r"(^|;)[34]8;2;", code) for code in codes)
+
+
+def test_a_truecolor_terminal_gets_the_picture_in_rgb(config_path):
+    codes = _colour_codes(_first_picture(config_path, "--colors", "truecolor"))
+    assert any(re.search(r"(^|;)38;2;\d+;\d+;\d+;48;2;", code) for code in codes)
+
+
+def test_the_picture_on_the_terminal_is_the_frame_exactly(config_path):
+    output = _first_picture(config_path, "--colors", "truecolor").decode()
+    screen = Screen(100, 30).feed(output)
+    # The picture is inside the first rounded box from the top left.
+    right = screen.text(0).index("╮")
+    bottom = next(y for y in range(30) if screen.text(y).startswith("╰"))
+    width, height = right - 1, bottom - 1
+    shown = screen.pixels(1, 1, width, height)
+    frame = SceneRenderer().render(Scene.of(load_config(config_path)), width, 2 * height)
+    np.testing.assert_array_equal(shown, frame)
+
+
+def test_after_its_frame_the_app_asks_where_the_cursor_is(config_path):
+    output = _first_picture(config_path)
+    picture = output.index(UPPER_HALF)
+    assert re.search(rb"\x1b7\x1b\[1;\d+H\x1b\[6n\x1b8", output[picture:])

@@ -1,0 +1,53 @@
+"""The viewport repaints only the lines a new frame changed, and nothing for the same frame."""
+
+from __future__ import annotations
+
+import pytest
+
+from tui.widgets.viewport import Viewport
+
+
+@pytest.fixture
+def painted(monkeypatch) -> list[int]:
+    """Every picture line Textual asks the viewport for, in order."""
+    lines: list[int] = []
+    render_line = Viewport.render_line
+
+    def recording(viewport, y):
+        lines.append(y)
+        return render_line(viewport, y)
+
+    monkeypatch.setattr(Viewport, "render_line", recording)
+    return lines
+
+
+async def test_a_new_frame_repaints_only_the_lines_that_changed(biceps, painted):
+    async with biceps(size=(100, 30)) as session:
+        viewport = session.app.screen.query_one(Viewport)
+        rows = range(viewport.size.height)
+        before = [viewport.render_line(y) for y in rows]
+        painted.clear()
+        await session.pilot.press("up")
+        await session.settle()
+        repainted = set(painted)
+        changed = {y for y in rows if viewport.render_line(y) is not before[y]}
+        assert changed and len(changed) < len(rows)  # the arm does not fill the picture
+        assert repainted == changed
+
+
+async def test_a_frame_like_the_last_repaints_nothing(biceps, painted):
+    async with biceps(size=(100, 30)) as session:
+        viewport = session.app.screen.query_one(Viewport)
+        painted.clear()
+        viewport.show(session.app.scene)  # a new request, and the same picture
+        assert not viewport.up_to_date
+        await session.settle()
+        assert painted == []
+
+
+async def test_the_captions_follow_the_picture_on_screen(biceps):
+    async with biceps(size=(100, 30)) as session:
+        viewport = session.app.screen.query_one(Viewport)
+        await session.pilot.press("right")
+        await session.settle()
+        assert viewport.border_title.startswith(f"yaw {session.app.scene.view.yaw:g}°")

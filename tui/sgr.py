@@ -1,0 +1,284 @@
+"""Terminal output with only the colour codes that change.
+
+Textual writes every segment as ``CSI <all its codes> m``, the text, then ``CSI 0 m``. A
+picture of thousands of segments in a row repeats the reset, and often a colour that has
+not changed. :func:`minimized` rewrites such output so that each SGR (Select Graphic
+Rendition) sequence sends only what differs from what the terminal already has; what the
+terminal shows, cell by cell, is the same.
+
+The kernel reads the output once, keeping two states (codes that are on, foreground,
+background): the one the output asks for and the one sent so far. SGR sequences only
+change the first; before anything is drawn (text, a newline, an escape sequence other than
+a cursor move) the difference is sent. A code it does not know (underline colour, colons)
+is sent as it is, and the rest of that output too, unchanged.
+
+Each write is taken on its own: Textual ends every write with the terminal in its default
+state, so that is where the state starts, and each write ends with the state its own codes
+leave, as it would have without the rewriting.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from textual.driver import Driver
+
+from engine.jit import ngjit
+
+ESC, BEL = 0x1B, 0x07
+
+# The attributes Textual writes (textual/strip.py SGR_STYLES), one bit each, and the codes
+# that turn them off again.
+ATTRIBUTES = np.array([1, 2, 3, 4, 5, 6, 7, 8, 9, 21, 51, 52, 53], np.int64)
+ATTRIBUTES_OFF = {22: (1, 2), 23: (3,), 24: (4, 21), 25: (5, 6), 27: (7,), 28: (8,),
+                  29: (9,), 54: (51, 52), 55: (53,)}
+
+
+def _off_masks() -> np.ndarray:
+    """For each code, the bits of the attributes it turns off."""
+    masks = np.zeros(max(ATTRIBUTES_OFF) + 1, np.int64)
+    bits = {int(code): bit for bit, code in enumerate(ATTRIBUTES)}
+    for code, attributes in ATTRIBUTES_OFF.items():
+        for attribute in attributes:
+            masks[code] |= 1 << bits[attribute]
+    return masks
+
+
+OFF_MASKS = _off_masks()
+
+# A colour as one number: its kind above bit 32, its value below. 0 is the default colour.
+BASIC, PALETTE, RGB = 1 << 32, 2 << 32, 3 << 32  # 30-37 or 90-97 (40-.. 100-..), 5;n, 2;r;g;b
+VALUE = (1 << 32) - 1
+MAX_PARAMETERS = 64
+
+
+@ngjit
+def _put_number(out, at, number):
+    """Write ``number`` (>= 0) in decimal at ``out[at:]``; return where it ends."""
+    digits = 1
+    while number >= 10**digits:
+        digits += 1
+    for place in range(digits - 1, -1, -1):
+        out[at + place] = 48 + number % 10
+        number //= 10
+    return at + digits
+
+
+@ngjit
+def _put_colour(out, at, colour, foreground):
+    """Write the codes of ``colour`` (packed as above); return where they end."""
+    kind, value = colour & ~VALUE, colour & VALUE
+    if kind == BASIC:
+        return _put_number(out, at, value)
+    if colour == 0:
+        return _put_number(out, at, 39 if foreground else 49)
+    at = _put_number(out, at, 38 if foreground else 48)
+    out[at] = 59  # ;
+    if kind == PALETTE:
+        out[at + 1] = 53  # 5
+        out[at + 2] = 59
+        return _put_number(out, at + 3, value)
+    out[at + 1] = 50  # 2
+    at += 2
+    for shift in (16, 8, 0):
+        out[at] = 59
+        at = _put_number(out, at + 1, (value >> shift) & 0xFF)
+    return at
+
+
+@ngjit
+def _put_sgr(out, at, sent, wanted, attributes, reset):
+    """Write an SGR sequence taking the terminal from ``sent`` to ``wanted`` (each
+    attributes, foreground, background): from a reset, or changing only what differs."""
+    start = at
+    out[at] = ESC
+    out[at + 1] = 91  # [
+    at += 2
+    if reset:
+        out[at] = 48  # 0
+        at += 1
+    added = wanted[0] if reset else wanted[0] & ~sent[0]
+    for bit in range(len(attributes)):
+        if added & (1 << bit):
+            if at > start + 2:
+                out[at] = 59  # ;
+                at += 1
+            at = _put_number(out, at, attributes[bit])
+    for index in (1, 2):
+        if wanted[index] != (0 if reset else sent[index]):
+            if at > start + 2:
+                out[at] = 59
+                at += 1
+            at = _put_colour(out, at, wanted[index], index == 1)
+    out[at] = 109  # m
+    return at + 1
+
+
+@ngjit
+def _put_change(out, at, sent, wanted, attributes):
+    """Write the shortest SGR sequence taking the terminal from ``sent`` to ``wanted``, if
+    they differ; return where it ends."""
+    if sent[0] == wanted[0] and sent[1] == wanted[1] and sent[2] == wanted[2]:
+        return at
+    end = at
+    if (sent[0] & ~wanted[0]) == 0:  # no attribute to turn off: the change alone will do
+        end = _put_sgr(out, at, sent, wanted, attributes, False)
+    reset_end = _put_sgr(out, end, sent, wanted, attributes, True)
+    if end == at or reset_end - end < end - at:
+        out[at:at + reset_end - end] = out[end:reset_end].copy()
+        end = at + reset_end - end
+    for index in range(3):
+        sent[index] = wanted[index]
+    return end
+
+
+@ngjit
+def _parse_sgr(source, start, end, state, attributes, off_masks, parameters):
+    """Apply the SGR parameters in ``source[start:end]`` to ``state``; False (and
+    ``state`` undefined) if one is not understood."""
+    count, number, digits = 0, 0, 0
+    for index in range(start, end + 1):
+        byte = source[index] if index < end else 59
+        if 48 <= byte <= 57:
+            number = number * 10 + byte - 48
+            digits += 1
+            if digits > 9:
+                return False
+        elif byte == 59:
+            if count == MAX_PARAMETERS:
+                return False
+            parameters[count] = number
+            count += 1
+            number, digits = 0, 0
+        else:
+            return False
+    index = 0
+    while index < count:
+        code = parameters[index]
+        if code == 0:
+            state[0], state[1], state[2] = 0, 0, 0
+        elif 30 <= code <= 37 or 90 <= code <= 97:
+            state[1] = BASIC | code
+        elif 40 <= code <= 47 or 100 <= code <= 107:
+            state[2] = BASIC | code
+        elif code == 39 or code == 49:
+            state[1 if code == 39 else 2] = 0
+        elif code == 38 or code == 48:
+            target = 1 if code == 38 else 2
+            if index + 2 < count and parameters[index + 1] == 5 and parameters[index + 2] < 256:
+                state[target] = PALETTE | parameters[index + 2]
+                index += 2
+            elif (index + 4 < count and parameters[index + 1] == 2 and parameters[index + 2] < 256
+                  and parameters[index + 3] < 256 and parameters[index + 4] < 256):
+                state[target] = (RGB | parameters[index + 2] << 16 | parameters[index + 3] << 8
+                                 | parameters[index + 4])
+                index += 4
+            else:
+                return False
+        elif code < len(off_masks) and off_masks[code]:
+            state[0] &= ~off_masks[code]
+        else:
+            for bit in range(len(attributes)):
+                if attributes[bit] == code:
+                    state[0] |= 1 << bit
+                    break
+            else:
+                return False
+        index += 1
+    return True
+
+
+@ngjit
+def _sequence_end(source, at):
+    """Where the escape sequence starting at ``source[at]`` (ESC) ends; an unfinished one
+    ends with ``source``."""
+    size = len(source)
+    if at + 1 >= size:
+        return size
+    kind = source[at + 1]
+    if kind == 91:  # [ : CSI, up to a final byte in @ to ~
+        for index in range(at + 2, size):
+            if 0x40 <= source[index] <= 0x7E:
+                return index + 1
+        return size
+    if kind == 93 or kind == 80 or kind == 95:  # ] P _ : OSC, DCS, APC, up to BEL or ST
+        for index in range(at + 2, size):
+            if source[index] == BEL:
+                return index + 1
+            if source[index] == ESC and index + 1 < size and source[index + 1] == 92:
+                return index + 2
+        return size
+    return at + 2
+
+
+@ngjit
+def minimize_sgr(source, out, length, attributes, off_masks):
+    """Rewrite ``source`` into ``out`` with only the SGR codes that change anything.
+
+    source: (n,) uint8 UTF-8; out: (m,) uint8, written; length: (1,) int64, set to the
+    bytes written, or -1 if ``out`` was too small. ``attributes``: the attribute codes, one
+    bit each; ``off_masks[code]``: the bits a code turns off.
+    """
+    sent = np.zeros(3, np.int64)  # attributes, foreground, background
+    wanted = np.zeros(3, np.int64)
+    trial = np.zeros(3, np.int64)
+    parameters = np.zeros(MAX_PARAMETERS, np.int64)
+    size, room = len(source), len(out) - 256  # two ways to change state take less
+    at, written, verbatim = 0, 0, False
+    while at < size:
+        if source[at] != ESC:
+            end = _text_end(source, at)
+            written = _put_change(out, written, sent, wanted, attributes)
+        else:
+            end = _sequence_end(source, at)
+            final = source[end - 1] if end - at > 2 and source[at + 1] == 91 else 0  # CSI
+            if final == 109:  # m: SGR
+                trial[:] = wanted
+                if _parse_sgr(source, at + 2, end - 1, trial, attributes, off_masks, parameters):
+                    wanted[:] = trial
+                    at = end
+                    continue
+                verbatim, end = True, size  # not understood: the rest goes as it is
+            if final != 72 and final != 102:  # a cursor move (H, f) draws nothing
+                written = _put_change(out, written, sent, wanted, attributes)
+        if written + end - at > room:
+            length[0] = -1
+            return
+        out[written:written + end - at] = source[at:end]
+        written += end - at
+        at = end
+    if not verbatim:
+        written = _put_change(out, written, sent, wanted, attributes)
+    length[0] = written
+
+
+@ngjit
+def _text_end(source, at):
+    """Where the text starting at ``source[at]`` ends: at the next ESC, or the end."""
+    for index in range(at, len(source)):
+        if source[index] == ESC:
+            return index
+    return len(source)
+
+
+def minimized(text: str) -> str:
+    """``text`` with only the colour codes that change anything."""
+    if "\x1b[" not in text:
+        return text
+    source = np.frombuffer(text.encode("utf-8", "surrogatepass"), np.uint8)
+    out = np.empty(len(source) + len(source) // 2 + 512, np.uint8)
+    length = np.zeros(1, np.int64)
+    minimize_sgr(source, out, length, ATTRIBUTES, OFF_MASKS)
+    if length[0] < 0:  # longer than it was: a pathological mix of codes, leave it be
+        return text
+    return out[: length[0]].tobytes().decode("utf-8", "surrogatepass")
+
+
+def lean(driver_class: type[Driver]) -> type[Driver]:
+    """``driver_class``, writing its output :func:`minimized`."""
+
+    class LeanDriver(driver_class):
+        def write(self, data: str) -> None:
+            super().write(minimized(data))
+
+    LeanDriver.__name__ = LeanDriver.__qualname__ = f"Lean{driver_class.__name__}"
+    return LeanDriver
