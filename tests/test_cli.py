@@ -131,3 +131,19 @@ def test_export_mesh_refuses_an_unknown_format(tmp_path):
     result = run("export-mesh", DEFAULT, "-o", tmp_path / "arm.fbx")
     assert result.exit_code == 2
     assert ".obj, .stl, .ply, .glb" in result.stderr
+
+
+def test_snapshot_ansi_prints_half_block_pixels_across_the_terminal(monkeypatch):
+    monkeypatch.setenv("COLUMNS", "60")
+    result = run("snapshot", DEFAULT, "--ansi", "--flexion", "90")
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.splitlines()
+    assert len(lines) == round(60 * 9 / 16 / 2)  # two pixel rows per line, 16:9
+    assert all(len(line) == 60 for line in lines)
+    assert set("".join(lines)) <= {"▄", "▀", " "}
+
+
+def test_snapshot_needs_an_output_or_ansi():
+    result = run("snapshot", DEFAULT)
+    assert result.exit_code == 2
+    assert "give -o FILE.png, or --ansi" in result.stderr
