@@ -6,8 +6,8 @@ buffers and return nothing. ``engine/render.py`` calls them once each per frame:
    is outside); for vertices inside them all, the screen position snapped to fixed point.
 3. ``light_vertices`` (Gouraud) or ``phong_vertices`` (Phong): the per-vertex attributes
    the rasterizer interpolates.
-4. ``clear``, then ``rasterize_gouraud``, ``rasterize_phong`` or ``rasterize_overdraw``:
-   per triangle, reject, cull, cover, shade.
+4. ``rasterize_gouraud``, ``rasterize_phong`` or ``rasterize_overdraw``, into buffers
+   cleared beforehand (``engine.render.clear``): per triangle, reject, cull, cover, shade.
 5. Only when some vertex is outside a clipping plane: ``clip_triangles`` cuts the triangles
    that cross one into a small mesh already in screen space, drawn by the same kernel.
 6. ``downsample``: average supersampled pixels.
@@ -52,7 +52,7 @@ import math
 
 import numpy as np
 
-from engine.jit import inline, ngjit
+from engine.jit import helper, inline, ngjit
 
 SUBPIXEL_BITS = 8
 ONE = 1 << SUBPIXEL_BITS  # one pixel in fixed point
@@ -84,19 +84,6 @@ highlight under half a colour level, so Phong skips its ``pow``."""
 
 
 @ngjit
-def _rows3(m):
-    """The rows of m: (3, >=3) float64 as tuples, read once."""
-    return ((m[0, 0], m[0, 1], m[0, 2]), (m[1, 0], m[1, 1], m[1, 2]), (m[2, 0], m[2, 1], m[2, 2]))
-
-
-@ngjit
-def _rows4(m):
-    """The rows of m: (4, 4) float64 as tuples, read once."""
-    return ((m[0, 0], m[0, 1], m[0, 2], m[0, 3]), (m[1, 0], m[1, 1], m[1, 2], m[1, 3]),
-            (m[2, 0], m[2, 1], m[2, 2], m[2, 3]), (m[3, 0], m[3, 1], m[3, 2], m[3, 3]))
-
-
-@ngjit
 def transform_vertices(vertices, normals, model, normal_matrix, world, world_normals):
     """Model space to world space.
 
@@ -104,18 +91,24 @@ def transform_vertices(vertices, normals, model, normal_matrix, world, world_nor
     normal_matrix: (3, 3) float64, the inverse transpose of ``model[:3, :3]``.
     Writes world: (3, n) float64 and world_normals: (3, n) float64, renormalised.
     """
-    m0, m1, m2, _ = _rows4(model)
-    n0, n1, n2 = _rows3(normal_matrix)
+    # The vertex kernels call no helpers: each compiled function costs tens of milliseconds
+    # of numba's time the first time it runs (see engine/jit.py).
+    m00, m01, m02, m03 = model[0, 0], model[0, 1], model[0, 2], model[0, 3]
+    m10, m11, m12, m13 = model[1, 0], model[1, 1], model[1, 2], model[1, 3]
+    m20, m21, m22, m23 = model[2, 0], model[2, 1], model[2, 2], model[2, 3]
     for i in range(vertices.shape[1]):
         x, y, z = vertices[0, i], vertices[1, i], vertices[2, i]
-        world[0, i] = m0[0] * x + m0[1] * y + m0[2] * z + m0[3]
-        world[1, i] = m1[0] * x + m1[1] * y + m1[2] * z + m1[3]
-        world[2, i] = m2[0] * x + m2[1] * y + m2[2] * z + m2[3]
+        world[0, i] = m00 * x + m01 * y + m02 * z + m03
+        world[1, i] = m10 * x + m11 * y + m12 * z + m13
+        world[2, i] = m20 * x + m21 * y + m22 * z + m23
+    n00, n01, n02 = normal_matrix[0, 0], normal_matrix[0, 1], normal_matrix[0, 2]
+    n10, n11, n12 = normal_matrix[1, 0], normal_matrix[1, 1], normal_matrix[1, 2]
+    n20, n21, n22 = normal_matrix[2, 0], normal_matrix[2, 1], normal_matrix[2, 2]
     for i in range(normals.shape[1]):
         x, y, z = normals[0, i], normals[1, i], normals[2, i]
-        nx = n0[0] * x + n0[1] * y + n0[2] * z
-        ny = n1[0] * x + n1[1] * y + n1[2] * z
-        nz = n2[0] * x + n2[1] * y + n2[2] * z
+        nx = n00 * x + n01 * y + n02 * z
+        ny = n10 * x + n11 * y + n12 * z
+        nz = n20 * x + n21 * y + n22 * z
         length = math.sqrt(nx * nx + ny * ny + nz * nz)
         scale = 1.0 / length if length > 0.0 else 0.0
         world_normals[0, i] = nx * scale
@@ -123,39 +116,17 @@ def transform_vertices(vertices, normals, model, normal_matrix, world, world_nor
         world_normals[2, i] = nz * scale
 
 
-@ngjit
+@helper
 def _guard(size):
     """How far out (in units of w) the guard band's planes are, for a screen ``size`` wide."""
     return 1.0 + 2.0 * GUARD_BAND / size
 
 
-@ngjit
-def _outcode(x, y, z, w, gx, gy):
-    """The clipping planes that clip-space point (x, y, z, w) is outside, as bits; INVALID
-    if a coordinate is not finite (or so large that the sum of magnitudes overflows).
-    Branch-free apart from selects, so that `project_vertices` vectorises."""
-    code = 0
-    if z + w < 0.0:
-        code |= NEAR
-    if x + gx * w < 0.0:
-        code |= LEFT
-    if gx * w - x < 0.0:
-        code |= RIGHT
-    if y + gy * w < 0.0:
-        code |= BOTTOM
-    if gy * w - y < 0.0:
-        code |= TOP
-    if w - z < 0.0:
-        code |= FAR
-    if not abs(x) + abs(y) + abs(z) + abs(w) < math.inf:  # false for NaN too
-        code = INVALID
-    return code
-
-
-@ngjit
+@helper
 def _to_screen(x, y, z, w, width, height):
     """Clip space to screen space: (X, Y) int64 in 1/256 pixel and the reversed depth
-    ``(1 - z / w) / 2`` (float64, 1 on the near plane, 0 on the far one)."""
+    ``(1 - z / w) / 2`` (float64, 1 on the near plane, 0 on the far one). The same
+    arithmetic as `project_vertices`, for the vertices that clipping makes."""
     inv_w = 1.0 / w
     sx = (x * inv_w + 1.0) * (0.5 * width)
     sy = (1.0 - y * inv_w) * (0.5 * height)
@@ -171,21 +142,50 @@ def project_vertices(world, view_projection, width, height, clip, screen_xy, scr
     Writes clip: (4, n) float64; outcodes: (n,) uint8 (bits NEAR ... INVALID); and for the
     vertices inside every clipping plane (outcode 0 or FAR), screen_xy: (2, n) int64 in
     1/256 pixel and screen_z: (n,) float64 depth (elsewhere 0).
+
+    The outcode is branch-free apart from selects, so that the loop vectorises; INVALID
+    if a coordinate is not finite (or so large that the sum of magnitudes overflows). The
+    screen position is `_to_screen`'s, written out here (no helpers, as above).
     """
-    gx, gy = _guard(width), _guard(height)
-    m0, m1, m2, m3 = _rows4(view_projection)
+    gx = 1.0 + 2.0 * GUARD_BAND / width  # the guard band's planes, in units of w
+    gy = 1.0 + 2.0 * GUARD_BAND / height
+    half_w, half_h = 0.5 * width, 0.5 * height
+    vp = view_projection
+    m00, m01, m02, m03 = vp[0, 0], vp[0, 1], vp[0, 2], vp[0, 3]
+    m10, m11, m12, m13 = vp[1, 0], vp[1, 1], vp[1, 2], vp[1, 3]
+    m20, m21, m22, m23 = vp[2, 0], vp[2, 1], vp[2, 2], vp[2, 3]
+    m30, m31, m32, m33 = vp[3, 0], vp[3, 1], vp[3, 2], vp[3, 3]
     for i in range(world.shape[1]):
         x, y, z = world[0, i], world[1, i], world[2, i]
-        cx = m0[0] * x + m0[1] * y + m0[2] * z + m0[3]
-        cy = m1[0] * x + m1[1] * y + m1[2] * z + m1[3]
-        cz = m2[0] * x + m2[1] * y + m2[2] * z + m2[3]
-        cw = m3[0] * x + m3[1] * y + m3[2] * z + m3[3]
+        cx = m00 * x + m01 * y + m02 * z + m03
+        cy = m10 * x + m11 * y + m12 * z + m13
+        cz = m20 * x + m21 * y + m22 * z + m23
+        cw = m30 * x + m31 * y + m32 * z + m33
         clip[0, i], clip[1, i], clip[2, i], clip[3, i] = cx, cy, cz, cw
-        code = _outcode(cx, cy, cz, cw, gx, gy)
+        code = 0
+        if cz + cw < 0.0:
+            code |= NEAR
+        if cx + gx * cw < 0.0:
+            code |= LEFT
+        if gx * cw - cx < 0.0:
+            code |= RIGHT
+        if cy + gy * cw < 0.0:
+            code |= BOTTOM
+        if gy * cw - cy < 0.0:
+            code |= TOP
+        if cw - cz < 0.0:
+            code |= FAR
+        if not abs(cx) + abs(cy) + abs(cz) + abs(cw) < math.inf:  # false for NaN too
+            code = INVALID
         outcodes[i] = code
         if code & ~FAR:
             cx, cy, cz, cw = 0.0, 0.0, 0.0, 1.0  # not used: keeps the conversion in range
-        screen_xy[0, i], screen_xy[1, i], screen_z[i] = _to_screen(cx, cy, cz, cw, width, height)
+        inv_w = 1.0 / cw
+        sx = (cx * inv_w + 1.0) * half_w
+        sy = (1.0 - cy * inv_w) * half_h
+        screen_xy[0, i] = np.int64(math.floor(sx * ONE + 0.5))
+        screen_xy[1, i] = np.int64(math.floor(sy * ONE + 0.5))
+        screen_z[i] = (cw - cz) * inv_w * 0.5
 
 
 @ngjit
@@ -204,16 +204,22 @@ def light_vertices(world, world_normals, albedo, light_position, ambient, diffus
         # Written so that a NaN (a bad normal, a vertex on the light) gives 0, not NaN.
         lambert = n_dot_l / length if n_dot_l > 0.0 and length > 0.0 else 0.0
         intensity = 255.0 * (ambient + diffuse * lambert)
-        colours[0, i] = _channel(albedo[0, i] * intensity)
-        colours[1, i] = _channel(albedo[1, i] * intensity)
-        colours[2, i] = _channel(albedo[2, i] * intensity)
+        for c in range(3):
+            # Clamped to [0, 255], NaN giving 0, as `_channel` (written out: no helpers).
+            value = albedo[c, i] * intensity
+            value = value if value > 0.0 else 0.0
+            colours[c, i] = value if value < 255.0 else 255.0
 
 
-@ngjit
+@helper
 def _channel(value):
-    """value clamped to [0, 255]; NaN gives 0 (numba's max keeps its first argument when
-    the comparison fails, as it does with NaN)."""
-    return min(255.0, max(0.0, value))
+    """value clamped to [0, 255]; NaN gives 0 (the comparison fails, as it does with NaN).
+
+    Here and below, conditional expressions rather than the builtin ``min`` and ``max``:
+    numba compiles those as functions of their own for each type and each caller, which
+    costs the first, cold run tens of milliseconds apiece."""
+    value = value if value > 0.0 else 0.0
+    return value if value < 255.0 else 255.0
 
 
 @ngjit
@@ -228,23 +234,6 @@ def phong_vertices(world, world_normals, albedo, attributes):
             attributes[c, i] = world[c, i]
             attributes[3 + c, i] = world_normals[c, i]
             attributes[6 + c, i] = 255.0 * albedo[c, i]
-
-
-@ngjit
-def clear(pixels, depths, width, red, green, blue):
-    """Fill pixels: (3 h w,) uint8 with (red, green, blue) and depths: (h w,) float32 with 0
-    (the far plane); ``width`` is w."""
-    # One row's bytes, then plain copies of it: unlike a loop storing three bytes per pixel,
-    # these vectorise, and run as fast as numpy's fill.
-    row = np.empty(3 * width, np.uint8)
-    for x in range(width):
-        row[3 * x], row[3 * x + 1], row[3 * x + 2] = red, green, blue
-    for y in range(depths.shape[0] // width):
-        start = 3 * width * y
-        for i in range(3 * width):
-            pixels[start + i] = row[i]
-    for i in range(depths.shape[0]):
-        depths[i] = 0.0
 
 
 @ngjit
@@ -276,17 +265,33 @@ def downsample(source, factor, target, width):
                 target[np.uint64(3 * (y * width + x) + c)] = (total * reciprocal) >> 24
 
 
-@ngjit
-def _pixel_range(low, high, size):
-    """The pixels (first, last) of ``size`` along one axis whose centres lie in the fixed
-    point interval [low, high]: the centre of pixel p is at ``p ONE + HALF``, so p runs from
-    ``ceil((low - HALF) / ONE)`` to ``floor((high - HALF) / ONE)``, clipped to the screen."""
-    first = max(-((HALF - low) >> SUBPIXEL_BITS), 0)
-    last = min((high - HALF) >> SUBPIXEL_BITS, size - 1)
-    return first, last
+@helper
+def _pixel_box(x0, y0, x1, y1, x2, y2, width, height):
+    """The pixels whose centres lie in the bounding box of a triangle (fixed point, as in
+    `triangle_spans`), clipped to the screen: rows first to last, columns left to right.
+
+    Along each axis the centre of pixel p is at ``p ONE + HALF``, so the pixels whose
+    centres lie in [low, high] run from ``ceil((low - HALF) / ONE)`` to
+    ``floor((high - HALF) / ONE)``. Conditional expressions rather than the builtin ``min``
+    and ``max``, which numba compiles as functions of their own for each caller (tens of
+    milliseconds apiece of a cold start)."""
+    low = y0 if y0 < y1 else y1
+    low = low if low < y2 else y2
+    high = y0 if y0 > y1 else y1
+    high = high if high > y2 else y2
+    first = -((HALF - low) >> SUBPIXEL_BITS)
+    last = (high - HALF) >> SUBPIXEL_BITS
+    low = x0 if x0 < x1 else x1
+    low = low if low < x2 else x2
+    high = x0 if x0 > x1 else x1
+    high = high if high > x2 else x2
+    left = -((HALF - low) >> SUBPIXEL_BITS)
+    right = (high - HALF) >> SUBPIXEL_BITS
+    return ((first if first > 0 else 0), (last if last < height - 1 else height - 1),
+            (left if left > 0 else 0), (right if right < width - 1 else width - 1))
 
 
-@ngjit
+@helper
 def _edge_walker(ax, ay, bx, by, row):
     """The edge a -> b as a bound on the covered pixels' x, row by row.
 
@@ -313,7 +318,7 @@ def _edge_walker(ax, ay, bx, by, row):
     return a, d, q, start - q * d, dq, b * ONE - dq * d
 
 
-@ngjit
+@helper
 def _edge_step(d, q, r, dq, dr):
     """The walker's (q, r) on the next row: R + B ONE = (q + dq) D + (r + dr), carried."""
     r += dr
@@ -321,13 +326,13 @@ def _edge_step(d, q, r, dq, dr):
     return q + dq + carry, r - carry * d
 
 
-@ngjit
+@helper
 def _edge_clamp(a, q, lo, hi):
     """Narrow the span [lo, hi] (inclusive) by an edge's bound on this row."""
     if a > 0:
-        return max(lo, -q), hi
+        return (lo if lo > -q else -q), hi
     if a < 0:
-        return lo, min(hi, q)
+        return lo, (hi if hi < q else q)
     return (lo, hi) if q >= 0 else (lo, lo - 1)
 
 
@@ -344,8 +349,7 @@ def triangle_spans(x0, y0, x1, y1, x2, y2, width, height, span_lo, span_hi):
     Returns (first, end): the rows ``first <= y < end`` that may hold covered pixels
     (``first >= end`` if none), clipped to the screen.
     """
-    first, last = _pixel_range(min(y0, min(y1, y2)), max(y0, max(y1, y2)), height)
-    left, right = _pixel_range(min(x0, min(x1, x2)), max(x0, max(x1, x2)), width)
+    first, last, left, right = _pixel_box(x0, y0, x1, y1, x2, y2, width, height)
     if first > last or left > right:
         return first, first
     a0, d0, q0, r0, dq0, dr0 = _edge_walker(x0, y0, x1, y1, first)
@@ -355,22 +359,21 @@ def triangle_spans(x0, y0, x1, y1, x2, y2, width, height, span_lo, span_hi):
         lo, hi = _edge_clamp(a0, q0, left, right)
         lo, hi = _edge_clamp(a1, q1, lo, hi)
         lo, hi = _edge_clamp(a2, q2, lo, hi)
-        span_lo[y], span_hi[y] = lo, max(hi + 1, lo)
+        span_lo[y], span_hi[y] = lo, (hi + 1 if hi >= lo else lo)
         q0, r0 = _edge_step(d0, q0, r0, dq0, dr0)
         q1, r1 = _edge_step(d1, q1, r1, dq1, dr1)
         q2, r2 = _edge_step(d2, q2, r2, dq2, dr2)
     return first, last + 1
 
 
-@ngjit
+@helper
 def _may_cover(x0, y0, x1, y1, x2, y2, width, height):
     """Whether a triangle (fixed point, as in `triangle_spans`) is front-facing and its
     bounding box holds a pixel centre on the screen: the cheap tests that throw out the
     back half of a closed mesh, and the many triangles smaller than a pixel, before setup."""
     if (y1 - y0) * (x2 - x0) - (x1 - x0) * (y2 - y0) <= 0:
         return False  # back-facing or degenerate
-    first, last = _pixel_range(min(y0, min(y1, y2)), max(y0, max(y1, y2)), height)
-    left, right = _pixel_range(min(x0, min(x1, x2)), max(x0, max(x1, x2)), width)
+    first, last, left, right = _pixel_box(x0, y0, x1, y1, x2, y2, width, height)
     return first <= last and left <= right
 
 
@@ -379,19 +382,19 @@ def _may_cover(x0, y0, x1, y1, x2, y2, width, height):
 # (value at the origin, d/dx, d/dy) of the depth and of the a attributes.
 
 
-@ngjit
+@helper
 def _fixed(value):
     """value (float) in 16.16 fixed point (int64), rounded."""
     return np.int64(math.floor(value * 65536.0 + 0.5))
 
 
-@ngjit
+@helper
 def _byte(value):
     """A colour channel (float) as the nearest byte value, clamped to [0, 255]."""
     return np.uint8(_channel(value + 0.5))
 
 
-@ngjit
+@helper
 def _normalised(x, y, z):
     """(x, y, z) scaled to unit length (or left as is if zero)."""
     length = math.sqrt(x * x + y * y + z * z)
@@ -430,7 +433,7 @@ def shade_gouraud(pixels, depths, start, end, xc, yc, planes, lighting):
         b += db
 
 
-@ngjit
+@helper
 def _phong_attributes(planes, x, y):
     """Phong's attributes at (x, y): world position (3), world normal (3), albedo (3)."""
     return (planes[1, 0] + planes[1, 1] * x + planes[1, 2] * y,
@@ -486,7 +489,7 @@ def count_overdraw(pixels, depths, start, end, xc, yc, planes, lighting):
         pixels[np.uint64(3) * i] += 1
 
 
-@ngjit
+@helper
 def _set_plane(planes, row, x0, y0, e1x, e1y, e2x, e2y, inv_det, v0, v1, v2):
     """planes[row] = (c, d/dx, d/dy) of the plane ``c + x d/dx + y d/dy`` through
     (x0, y0, v0), (x0 + e1x, y0 + e1y, v1), (x0 + e2x, y0 + e2y, v2) (Cramer's rule)."""
@@ -505,7 +508,7 @@ def _draw_triangle(shade, i0, i1, i2, screen_xy, screen_z, attributes, lighting,
     """Cover and shade the triangle of vertices i0, i1, i2 with the span shader ``shade``.
 
     screen_xy: (2, n) int64, screen_z: (n,) float64, attributes: (a, n) float64.
-    span_lo, span_hi: (height,) int64 and planes: (1 + a, 3) float64: scratch.
+    span_lo, span_hi: (height,) int64 and planes: (>= 1 + a, 3) float64: scratch.
     """
     x0, y0 = screen_xy[0, i0], screen_xy[1, i0]
     x1, y1 = screen_xy[0, i1], screen_xy[1, i1]
@@ -516,7 +519,7 @@ def _draw_triangle(shade, i0, i1, i2, screen_xy, screen_z, attributes, lighting,
     e2x, e2y = (x2 - x0) / ONE, (y2 - y0) / ONE
     inv_det = 1.0 / (e1x * e2y - e1y * e2x)
     fx, fy = x0 / ONE, y0 / ONE
-    for k in range(planes.shape[0]):
+    for k in range(1 + attributes.shape[0]):
         if k == 0:
             v0, v1, v2 = screen_z[i0], screen_z[i1], screen_z[i2]
         else:
@@ -531,12 +534,10 @@ def _draw_triangle(shade, i0, i1, i2, screen_xy, screen_z, attributes, lighting,
 
 @inline
 def _rasterize(shade, triangles, screen_xy, screen_z, outcodes, attributes, lighting, pixels,
-               depths, width):
+               depths, width, spans, planes):
     """The triangle loop of the rasterize kernels, for the span shader ``shade``."""
     height = depths.shape[0] // width
-    span_lo = np.empty(height, np.int64)
-    span_hi = np.empty(height, np.int64)
-    planes = np.empty((1 + attributes.shape[0], 3))
+    span_lo, span_hi = spans[0], spans[1]
     for t in range(triangles.shape[0]):
         i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
         c0, c1, c2 = outcodes[i0], outcodes[i1], outcodes[i2]
@@ -550,7 +551,7 @@ def _rasterize(shade, triangles, screen_xy, screen_z, outcodes, attributes, ligh
 
 @ngjit
 def rasterize_gouraud(triangles, screen_xy, screen_z, outcodes, attributes, lighting, pixels,
-                      depths, width):
+                      depths, width, spans, planes):
     """Draw every front-facing triangle inside the clipping planes, nearest wins, with
     Gouraud shading.
 
@@ -559,39 +560,42 @@ def rasterize_gouraud(triangles, screen_xy, screen_z, outcodes, attributes, ligh
     `project_vertices` (or `clip_triangles`). attributes: (a, n) float64, from
     `light_vertices` (Gouraud, a = 3) or `phong_vertices` (Phong, a = 9); any for overdraw.
     lighting: (11,) float64 laid out as ``LIGHTING`` (used by Phong).
-    pixels: (3 h w,) uint8 and depths: (h w,) float32, the frame buffers flattened, as
-    `clear` left them; width: w.
+    pixels: (3 h w,) uint8 and depths: (h w,) float32, the frame buffers flattened,
+    cleared to the background and depth 0; width: w. spans: (2, h) int64 and planes:
+    (10, 3) float64 (at least 1 + a rows): scratch, passed in so that the kernel allocates
+    nothing (numba's ``np.empty`` alone costs a cold start about 0.1 s to compile).
 
     Triangles with a vertex outside a clipping plane other than the far one are left for
     `clip_triangles`.
     """
     _rasterize(shade_gouraud, triangles, screen_xy, screen_z, outcodes, attributes, lighting,
-               pixels, depths, width)
+               pixels, depths, width, spans, planes)
 
 
 @ngjit
 def rasterize_phong(triangles, screen_xy, screen_z, outcodes, attributes, lighting, pixels,
-                    depths, width):
+                    depths, width, spans, planes):
     """`rasterize_gouraud` with Phong shading."""
     _rasterize(shade_phong, triangles, screen_xy, screen_z, outcodes, attributes, lighting,
-               pixels, depths, width)
+               pixels, depths, width, spans, planes)
 
 
 @ngjit
 def rasterize_overdraw(triangles, screen_xy, screen_z, outcodes, attributes, lighting, pixels,
-                       depths, width):
+                       depths, width, spans, planes):
     """`rasterize_gouraud` counting the triangles that cover each pixel (`count_overdraw`)."""
     _rasterize(count_overdraw, triangles, screen_xy, screen_z, outcodes, attributes, lighting,
-               pixels, depths, width)
+               pixels, depths, width, spans, planes)
 
 
 # Clipping is a separate pass, compiled the first time a frame needs it.
 
 
-@ngjit
+@helper
 def _clip_distance(polygon, slot, i, plane, gx, gy):
     """How far vertex i of polygon[slot] (rows x, y, z, w, attributes...) is inside
-    ``plane``, in clip space units: >= 0 inside. The same inequalities as `_outcode`."""
+    ``plane``, in clip space units: >= 0 inside. The same inequalities as the outcodes of
+    `project_vertices`."""
     x, y, z, w = polygon[slot, i, 0], polygon[slot, i, 1], polygon[slot, i, 2], polygon[slot, i, 3]
     if plane == NEAR:
         return z + w
@@ -604,7 +608,7 @@ def _clip_distance(polygon, slot, i, plane, gx, gy):
     return gy * w - y
 
 
-@ngjit
+@helper
 def _clip_polygon(polygon, source, slot, n, plane, gx, gy):
     """One Sutherland-Hodgman pass: cut the convex polygon of n vertices in polygon[slot]
     by ``plane`` into polygon[1 - slot], and return its vertex count.

@@ -29,6 +29,7 @@ class Renderer:
 
     def __init__(self):
         self._frame: tuple | None = None  # (height, width, ssaa)
+        self._planes = np.empty((10, 3))  # the rasterizers' scratch: depth and 9 attributes
         self._vertex_count = -1
 
     def render(self, vertices, normals, triangles, albedo, model_matrix, camera: Camera,
@@ -73,10 +74,10 @@ class Renderer:
         if shading == "overdraw":
             background = (0, 0, 0)  # the picture counts from zero
         red, green, blue = (min(max(int(c), 0), 255) for c in background)
+        clear(self._colour, self._depth, (red, green, blue))
         pixels, depths = self._colour.reshape(-1), self._depth.reshape(-1)
-        raster.clear(pixels, depths, full_w, red, green, blue)
         rasterize(triangles, self._screen_xy, self._screen_z, self._outcodes, attributes,
-                  lighting, pixels, depths, full_w)
+                  lighting, pixels, depths, full_w, self._spans, self._planes)
         if np.bitwise_or.reduce(self._outcodes) & raster.CLIP_MASK:
             self._draw_clipped(rasterize, triangles, attributes, lighting, full_w, full_h)
 
@@ -127,7 +128,8 @@ class Renderer:
                               out_attributes, out_triangles, counts)
         inside = np.zeros(room, np.uint8)  # every outcode 0: the clipper did its work
         rasterize(_read_only(out_triangles[:counts[1]]), out_xy, out_z, inside, out_attributes,
-                  lighting, self._colour.reshape(-1), self._depth.reshape(-1), width)
+                  lighting, self._colour.reshape(-1), self._depth.reshape(-1), width, self._spans,
+                  self._planes)
 
     def _reserve_frame(self, height: int, width: int, ssaa: int) -> None:
         """(Re)allocate the frame buffers when the size or the supersampling changes."""
@@ -136,6 +138,7 @@ class Renderer:
         self._colour = np.empty((height * ssaa, width * ssaa, 3), np.uint8)
         self._depth = np.empty((height * ssaa, width * ssaa), np.float32)
         self._output = np.empty((height, width, 3), np.uint8) if ssaa > 1 else None
+        self._spans = np.empty((2, height * ssaa), np.int64)  # the rasterizers' scratch
         self._frame = (height, width, ssaa)
 
     def _reserve_vertices(self, count: int) -> None:
@@ -199,3 +202,15 @@ def _check_mesh(vertices, normals, triangles, albedo) -> None:
         raise ValueError(f"triangles must have shape (m, 3), got {triangles.shape}")
     if triangles.size and (triangles.min() < 0 or triangles.max() >= count):
         raise ValueError(f"triangles index vertices outside 0..{count - 1}")
+
+
+def clear(colour: np.ndarray, depth: np.ndarray, background: tuple[int, int, int]) -> None:
+    """Fill colour: (h, w, 3) uint8 with ``background`` and depth: (h, w) float32 with 0.
+
+    numpy, with no kernel to compile or load: one row pixel by pixel, then whole rows copied
+    (broadcasting the three bytes over the whole frame at once, with its innermost loop
+    three long, is 50 times slower). Depth 0 is the far plane.
+    """
+    colour[0] = background
+    colour[1:] = colour[0]
+    depth.fill(0.0)

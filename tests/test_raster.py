@@ -72,10 +72,10 @@ def draw_on_screen(points, triangles, width, height, *, colours=None,
     raster.project_vertices(world, np.eye(4), width, height, clip, xy, z, codes)
     attributes = np.empty((0, n)) if colours is None else np.ascontiguousarray(colours.T)
     colour = np.zeros((height, width, 3), np.uint8)
-    depths = np.empty(height * width, np.float32)
-    raster.clear(colour.reshape(-1), depths, width, 0, 0, 0)
+    depths = np.zeros(height * width, np.float32)  # the far plane
     kernel(np.ascontiguousarray(triangles, dtype=np.int32), xy, z, codes, attributes,
-           np.zeros(11), colour.reshape(-1), depths, width)
+           np.zeros(11), colour.reshape(-1), depths, width, np.empty((2, height), np.int64),
+           np.empty((10, 3)))
     return colour
 
 
