@@ -22,10 +22,9 @@ import click
 from engine.arm import Arm
 from engine.config import DEFAULT_CONFIG, load_config
 from engine.errors import BicepsError
-from engine.export import MESH_FORMATS, check_writable, write_mesh, write_png
+from engine.export import MESH_FORMATS, check_writable, parse_size, write_mesh, write_png
 from engine.scene import Scene, SceneRenderer
 
-MAX_SIDE = 16384
 
 
 class _FiniteFloat(click.ParamType):
@@ -179,13 +178,10 @@ def describe(arm: Arm) -> dict[str, Any]:
 
 
 def _parse_size(_ctx: Any, _param: Any, value: str) -> tuple[int, int]:
-    width, _, height = value.lower().partition("x")
-    if not (width.isdigit() and height.isdigit()):
-        raise click.BadParameter(f"give WIDTHxHEIGHT in pixels, like 1920x1080; got {value!r}")
-    size = int(width), int(height)
-    if not all(1 <= side <= MAX_SIDE for side in size):
-        raise click.BadParameter(f"each side must be 1 to {MAX_SIDE} pixels; got {value!r}")
-    return size
+    try:
+        return parse_size(value)
+    except ValueError as error:
+        raise click.BadParameter(str(error)) from None
 
 
 def _parse_point(_ctx: Any, _param: Any, value: str | None) -> tuple[float, float, float] | None:
@@ -254,7 +250,14 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: boo
 
         print_picture(lambda width, height: SceneRenderer().render(scene, width, height))
         return
-    write_png(output, SceneRenderer().render(scene, *size))
+    try:
+        frame = SceneRenderer().render(scene, *size)
+    except MemoryError:
+        raise BicepsError(
+            f"not enough memory to render {size[0]}x{size[1]} with {scene.render.ssaa}x"
+            f"{scene.render.ssaa} supersampling; try a smaller --size or --ssaa"
+        ) from None
+    write_png(output, frame)
     click.echo(f"wrote {output} ({size[0]}x{size[1]})", err=True)
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import io
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,29 @@ from engine.files import write_atomically
 PNG_COMPRESS_LEVEL = 1
 
 MESH_FORMATS = (".obj", ".stl", ".ply", ".glb")
+
+# Pixels per side: 8K. With 4x4 supersampling such a picture is rendered at 32768 x 32768,
+# 7.5 GB of colour and depth; much beyond that no machine here renders it.
+LARGEST_SIDE = 8192
+
+_SIZE = re.compile(r"^\s*(\d+)\s*[x×X*, ]\s*(\d+)\s*$")
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    """A picture size written ``WIDTHxHEIGHT`` in pixels, such as ``1920x1080``.
+
+    Raises ValueError saying what is wrong; the command line and the app's export dialog
+    both read sizes with this.
+    """
+    match = _SIZE.match(text)
+    if match is None:
+        shown = repr(text.strip()) if text.strip() else "nothing"
+        raise ValueError(f"{shown} is not a size: write it as 1920x1080")
+    width, height = int(match[1]), int(match[2])
+    for side in (width, height):
+        if not 1 <= side <= LARGEST_SIDE:
+            raise ValueError(f"each side must be 1 to {LARGEST_SIDE} pixels, not {side}")
+    return width, height
 
 
 def check_writable(path: Path, *suffixes: str) -> None:

@@ -4,7 +4,8 @@ from pathlib import Path
 
 import pytest
 
-from tui.parse import parse_number, parse_path, parse_size
+from engine.export import parse_size
+from tui.parse import parse_number, parse_path
 from tui.suggest import PathSuggester
 
 

@@ -50,9 +50,10 @@ def test_snapshot_writes_a_png_of_the_asked_size(tmp_path):
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["--size", "0x0"], "each side must be 1 to 16384"),
-        (["--size", "abc"], "give WIDTHxHEIGHT"),
-        (["--size", "12x"], "give WIDTHxHEIGHT"),
+        (["--size", "0x0"], "each side must be 1 to 8192"),
+        (["--size", "20000x100"], "each side must be 1 to 8192"),
+        (["--size", "abc"], "'abc' is not a size: write it as 1920x1080"),
+        (["--size", "12x"], "'12x' is not a size"),
         (["--light", "1,2"], "give X,Y,Z"),
         (["--light", "1,nan,2"], "finite"),
         (["--ssaa", "9"], "--ssaa"),

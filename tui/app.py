@@ -26,7 +26,7 @@ from textual.screen import Screen
 
 from engine.config import Config, load_config, save_config
 from engine.errors import BicepsError
-from engine.export import check_writable, write_png
+from engine.export import check_writable, parse_size, write_png
 from engine.scene import Scene, SceneRenderer
 from tui.changes import (
     COARSE_STEP,
@@ -45,7 +45,7 @@ from tui.changes import (
 )
 from tui.commands import KeyCommands
 from tui.pacing import Pacer, cursor_question
-from tui.parse import parse_path, parse_size
+from tui.parse import parse_path
 from tui.screens.choice import Answer, Choice
 from tui.screens.help import HelpScreen
 from tui.screens.main import MainScreen
