@@ -61,21 +61,6 @@ class Mesh:
             np.concatenate([mesh.triangles + offset for mesh, offset in zip(meshes, offsets)]),
         )
 
-    def transformed(self, matrix) -> "Mesh":
-        """This mesh moved by an affine ``matrix`` (4, 4) acting on column vectors.
-
-        Normals go through the inverse transpose (so they stay perpendicular to the surface
-        under non-uniform scaling) and are renormalised. A mirroring matrix (negative
-        determinant) would turn the surface inside out, so the winding is reversed with it.
-        """
-        matrix = np.asarray(matrix, dtype=np.float64)
-        linear, shift = matrix[:3, :3], matrix[:3, 3]
-        # Row vectors: (A^-T n)^T = n^T A^-1.
-        normals = self.normals @ np.linalg.inv(linear)
-        normals /= np.linalg.norm(normals, axis=1, keepdims=True)
-        triangles = self.triangles if np.linalg.det(linear) > 0 else self.triangles[:, ::-1]
-        return Mesh(self.vertices @ linear.T + shift, normals, triangles)
-
 
 def muscle_mesh(
     radii,
