@@ -316,7 +316,7 @@ def save_config(config: Config, arm: Arm, view: ViewTable, light: LightTable,
 
     Only values that differ from what the file says (or implies by default) are written, so
     the user's comments, order and layout survive. ``path`` saves a copy elsewhere ("save
-    as"). Returns the configuration as now on disk; raises :class:`ConfigError` and leaves
+    as"). Returns the configuration as now on disk; raises :class:`FileError` and leaves
     every file as it was when it cannot write.
     """
     target = Path(path) if path is not None else config.path

@@ -17,7 +17,7 @@ from engine.config import Config, LightTable, RenderTable, ViewTable, rgb
 from engine.mesh import Mesh, arm_meshes
 from engine.render import Renderer
 from engine.skeleton import Skeleton
-from engine.transforms import Camera, Light, model_matrix
+from engine.transforms import Camera, Light, frame_sphere, model_matrix
 
 
 @dataclass(frozen=True)
@@ -79,15 +79,7 @@ def view_camera(scene: Scene, aspect: float) -> tuple[Camera, np.ndarray]:
     """The camera for ``scene`` at this width / height, and the model matrix (4, 4)."""
     centre, radius = reach(scene.arm.skeleton)
     view = scene.view
-    # A sphere fits a cone of half-angle h when seen from R / sin(h) away; h is the
-    # narrower of the vertical and the horizontal half-angles of the view.
-    half_y = np.radians(view.fov) / 2
-    half = min(half_y, np.arctan(np.tan(half_y) * aspect))
-    distance = radius / np.sin(half)
-    camera = Camera(
-        eye=tuple(centre + [0.0, 0.0, distance]), target=tuple(centre), fov_y_deg=view.fov,
-        near=0.05 * distance, far=distance + 8 * radius * max(view.scale, 1.0),
-    )
+    camera = frame_sphere(centre, radius, aspect, view.fov, view.scale)
     model = model_matrix(
         np.radians(view.yaw), np.radians(view.pitch), np.radians(view.roll),
         view.scale, view.offset, pivot=centre,

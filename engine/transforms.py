@@ -199,3 +199,25 @@ def frame_camera(bounds_min, bounds_max, aspect: float, fov_y_deg: float = 35.0,
     far = float(distance + 4.0 * np.linalg.norm(half) + 10.0 * near)
     return Camera(eye=eye, target=tuple(float(c) for c in centre), fov_y_deg=fov_y_deg,
                   near=near, far=far)
+
+
+def frame_sphere(centre, radius: float, aspect: float, fov_y_deg: float = 35.0,
+                 scale: float = 1.0) -> Camera:
+    """A camera on the ``+z`` side of a sphere, looking down ``-z`` at its centre, as close
+    as it can be with the whole sphere in view: it touches the narrower pair of edges.
+
+    centre: (3,) world space; radius in cm; aspect: width / height of the view. ``scale``
+    (the model's zoom) only pushes the far plane out so a scaled-up model is not cut off.
+
+    A sphere seen from ``d`` away fills a cone of half-angle ``asin(R / d)``, so it fits a
+    view of half-angle ``h`` from ``d = R / sin(h)``.
+    """
+    centre = np.asarray(centre, dtype=np.float64)
+    half_y = math.radians(fov_y_deg) / 2.0
+    half = min(half_y, math.atan(math.tan(half_y) * aspect))
+    distance = radius / math.sin(half)
+    return Camera(
+        eye=tuple(float(c) for c in centre + [0.0, 0.0, distance]),
+        target=tuple(float(c) for c in centre), fov_y_deg=fov_y_deg,
+        near=0.05 * distance, far=distance + 8.0 * radius * max(scale, 1.0),
+    )

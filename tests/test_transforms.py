@@ -8,6 +8,7 @@ import pytest
 from engine.transforms import (
     Camera,
     frame_camera,
+    frame_sphere,
     look_at,
     model_matrix,
     normal_matrix,
@@ -108,3 +109,19 @@ def test_frame_camera_fits_the_box_and_fills_the_view(aspect):
     assert np.all((ndc[:, 2] > -1) & (ndc[:, 2] < 1))  # between the near and far planes
     assert np.isclose(np.abs(ndc[:, :2]).max(), 0.9)  # and as large as that allows
     assert camera.eye[2] > high[2] and camera.target == tuple((low + high) / 2)
+
+
+@pytest.mark.parametrize("aspect", [0.5, 1.0, 16 / 9])
+def test_frame_sphere_makes_the_sphere_touch_the_narrower_edges(aspect):
+    centre, radius, fov = np.array([3.0, -2.0, 1.0]), 10.0, 40.0
+    camera = frame_sphere(centre, radius, aspect, fov)
+    clip = camera.projection_matrix(aspect) @ camera.view_matrix()
+    half_y = np.radians(fov) / 2
+    half = min(half_y, np.arctan(np.tan(half_y) * aspect))
+    # The tangent point of a ray at the view's edge, on the narrower axis.
+    axis = 1 if half == half_y else 0
+    offset = np.zeros(3)
+    offset[axis], offset[2] = radius * np.cos(half), radius * np.sin(half)
+    ndc = transform_points(clip, (centre + offset)[None])[0]
+    assert ndc[axis] == pytest.approx(1.0, abs=1e-9)
+    assert abs(ndc[1 - axis]) < 1e-9
