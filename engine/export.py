@@ -13,6 +13,7 @@ from PIL import Image
 from engine.arm import Arm
 from engine.errors import FileError
 from engine.files import write_atomically
+from engine.scene import arm_parts
 
 # zlib level 1: within a few per cent of level 6's size on these pictures (a flat
 # background, smooth shading) at a fraction of the time, which dominates a headless snapshot.
@@ -82,15 +83,10 @@ def write_mesh(path: str | os.PathLike, arm: Arm, segments: int) -> None:
     """
     import trimesh  # heavy, and only this command needs it
 
-    from engine.mesh import arm_meshes
-
     path = Path(path)
     check_writable(path, *MESH_FORMATS)
-    pose = arm.pose
-    parts = arm_meshes(pose.shoulder, pose.origin, pose.elbow, pose.insertion, pose.hand,
-                       arm.muscle.radii, arm.length, segments)
     scene = trimesh.Scene()
-    for name, mesh in parts.items():
+    for name, mesh in arm_parts(arm, segments).items():
         geometry = trimesh.Trimesh(mesh.vertices, mesh.triangles, vertex_normals=mesh.normals,
                                    process=False)
         scene.add_geometry(geometry, node_name=name, geom_name=name)

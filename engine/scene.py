@@ -46,13 +46,19 @@ class Scene:
         return replace(self, arm=arm)
 
 
-def scene_mesh(arm: Arm, segments: int, muscle_colour: str, bone_colour: str) -> tuple[Mesh, np.ndarray]:
-    """The arm as one world-space mesh, and its per-vertex albedo (n, 3) float32 in [0, 1]."""
+def arm_parts(arm: Arm, segments: int) -> dict[str, Mesh]:
+    """The arm in its current pose: "muscle", "humerus", "forearm" and "elbow", world space."""
     pose = arm.pose
-    parts = arm_meshes(
+    return arm_meshes(
         pose.shoulder, pose.origin, pose.elbow, pose.insertion, pose.hand,
         arm.muscle.radii, arm.length, segments,
     )  # fmt: skip
+
+
+def scene_mesh(arm: Arm, segments: int, muscle_colour: str,
+               bone_colour: str) -> tuple[Mesh, np.ndarray]:
+    """The arm as one world-space mesh, and its per-vertex albedo (n, 3) float32 in [0, 1]."""
+    parts = arm_parts(arm, segments)
     colours = {"muscle": _unit_rgb(muscle_colour)}
     albedo = [np.broadcast_to(colours.get(name, _unit_rgb(bone_colour)), (len(part.vertices), 3))
               for name, part in parts.items()]
