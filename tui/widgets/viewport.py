@@ -33,6 +33,9 @@ from tui.latest_only import LatestOnly
 from tui.pacing import Pacer
 
 
+PAINT_TRIES = 8  # refreshes to wait for a frame to be drawn before pacing on regardless
+
+
 @dataclass(frozen=True)
 class _Request:
     number: int
@@ -86,6 +89,7 @@ class Viewport(Widget, can_focus=True):
         self._requests: LatestOnly[_Request] = LatestOnly()
         self._requested = 0  # the number of the newest request
         self._shown = 0  # the number of the request whose frame is on screen
+        self._painted = 0  # the number of the request whose frame Textual last drew
         self._strips: list[Strip] = []
         self._background = Style()
         self._captions = ("", "")
@@ -140,9 +144,20 @@ class Viewport(Widget, can_focus=True):
         self._shown = message.number
         if message.lines.changed:  # (no regions would mean all of them)
             self.refresh(*(self._rows(y, rows) for y, rows in message.lines.changed))
+        else:
+            self._painted = message.number  # the same picture: nothing to draw
         self._caption(*_view_captions(message.scene))
+        self.call_after_refresh(self._when_painted, PAINT_TRIES)
+
+    def _when_painted(self, tries: int) -> None:
         # Once Textual has written this frame, the pacer says when the next may be made.
-        self.call_after_refresh(self._pacer.after_frame, self._requests.done)
+        # "After refresh" can come before the refresh that draws it (the screen may go idle
+        # before it hears that this widget is dirty); asking the terminal then would time
+        # the wrong write. A hidden viewport is never drawn, hence the limit.
+        if self._painted < self._shown and tries > 1:
+            self.call_after_refresh(self._when_painted, tries - 1)
+        else:
+            self._pacer.after_frame(self._requests.done)
 
     def on_viewport_render_failed(self, message: RenderFailed) -> None:
         self._requests.done()
@@ -181,6 +196,7 @@ class Viewport(Widget, can_focus=True):
                 if not isinstance(line_filter, ANSIToTruecolor)]
 
     def render_line(self, y: int) -> Strip:
+        self._painted = self._shown
         width = self.size.width
         if y >= len(self._strips):
             return Strip.blank(width, self._background)
