@@ -11,6 +11,7 @@ written) ends the process with exit code 2 and one clear message on stderr.
 from __future__ import annotations
 
 import functools
+import gc
 import json
 import math
 import sys
@@ -278,5 +279,16 @@ def export_mesh(config: Path, output: Path, segments: int | None, length: float 
     click.echo(f"wrote {output}", err=True)
 
 
+def run() -> None:
+    """The ``biceps`` command: :func:`main`, then a quicker exit."""
+    try:
+        main()
+    finally:
+        # At exit Python collects garbage again and again as it tears the modules down, and
+        # each pass walks every object numba and LLVM have made: about 0.2 s after a
+        # snapshot, a third of its time. Frozen objects are left for the OS to free.
+        gc.freeze()
+
+
 if __name__ == "__main__":
-    main()
+    run()
