@@ -21,6 +21,7 @@ from typing import Any, Callable
 import click
 
 from engine.arm import Arm
+from engine.coldstart import prepare_kernels
 from engine.config import DEFAULT_CONFIG, load_config
 from engine.errors import BicepsError
 from engine.export import MESH_FORMATS, check_writable, parse_size, write_mesh, write_png
@@ -246,6 +247,8 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: boo
     if output is not None:
         check_writable(output, ".png")
     scene = posed_scene(config, length, flexion, **overrides)
+    if _own_process():
+        prepare_kernels(scene.render.shading)  # forks, and freezes the heap: see coldstart
     if ansi:
         from tui.ansi import print_picture  # rich, only for this mode
 
@@ -279,10 +282,20 @@ def export_mesh(config: Path, output: Path, segments: int | None, length: float 
     click.echo(f"wrote {output}", err=True)
 
 
+OWN_PROCESS = "the biceps command's own process"
+"""The context's ``obj`` when the process is the command's own and ends with it (see `run`),
+rather than a caller's (a test's, say): only then may the command fork it or freeze its
+heap."""
+
+
+def _own_process() -> bool:
+    return click.get_current_context().find_root().obj == OWN_PROCESS
+
+
 def run() -> None:
     """The ``biceps`` command: :func:`main`, then a quicker exit."""
     try:
-        main()
+        main(obj=OWN_PROCESS)
     finally:
         # At exit Python collects garbage again and again as it tears the modules down, and
         # each pass walks every object numba and LLVM have made: about 0.2 s after a

@@ -75,17 +75,36 @@ class Renderer:
             background = (0, 0, 0)  # the picture counts from zero
         red, green, blue = (min(max(int(c), 0), 255) for c in background)
         clear(self._colour, self._depth, (red, green, blue))
-        pixels, depths = self._colour.reshape(-1), self._depth.reshape(-1)
-        rasterize(triangles, self._screen_xy, self._screen_z, self._outcodes, attributes,
-                  lighting, pixels, depths, full_w, self._spans, self._planes)
+        self._rasterize(rasterize, triangles, attributes, lighting)
         if np.bitwise_or.reduce(self._outcodes) & raster.CLIP_MASK:
             self._draw_clipped(rasterize, triangles, attributes, lighting, full_w, full_h)
 
         picture = self._colour
         if ssaa > 1:
-            raster.downsample(pixels, int(ssaa), self._output.reshape(-1), int(width))
+            raster.downsample(self._colour.reshape(-1), int(ssaa), self._output.reshape(-1),
+                              int(width))
             picture = self._output
         return _read_only(picture)
+
+    def prepare(self, shading: str = "gouraud", *, vertex_stage: bool = True,
+                rasterizer: bool = True) -> None:
+        """Compile, or load from numba's cache, the kernels a frame in ``shading`` runs, or
+        those of one stage, without drawing anything (see ``engine/coldstart.py``).
+
+        Each kernel runs once on buffers of the kinds `render` passes it, for one vertex,
+        no triangle and one pixel, so that numba makes the very version `render` calls.
+        """
+        rasterize = RASTERIZERS[shading]
+        self._reserve_frame(1, 1, 1)
+        self._reserve_vertices(1)
+        if vertex_stage:
+            self._transform(np.zeros((1, 3)), np.zeros((1, 3)), np.zeros((1, 3), np.float32),
+                            np.eye(4), np.eye(4), 1, 1)
+            self._vertex_attributes(shading, Light())
+        if rasterizer:
+            no_triangles = _read_only(np.zeros((0, 3), np.int32))
+            self._rasterize(rasterize, no_triangles, self._attributes(shading),
+                            _lighting(Light(), Camera()))
 
     def _transform(self, vertices, normals, albedo, model, view_projection, width, height):
         """The vertex stage: world positions and normals, clip space, screen positions."""
@@ -99,17 +118,26 @@ class Renderer:
                                 self._screen_xy, self._screen_z, self._outcodes)
 
     def _vertex_attributes(self, shading: str, light: Light) -> np.ndarray:
-        """What the rasterizer interpolates for ``shading``: (a, n) float64."""
+        """Work out what the rasterizer interpolates for ``shading``: (a, n) float64."""
+        attributes = self._attributes(shading)
         if shading == "gouraud":
             raster.light_vertices(self._world, self._world_normals, self._albedo,
                                   np.asarray(light.position, dtype=np.float64),
-                                  float(light.ambient), float(light.diffuse), self._colours)
-            return self._colours
-        if shading == "phong":
-            raster.phong_vertices(self._world, self._world_normals, self._albedo,
-                                  self._phong_attributes)
-            return self._phong_attributes
-        return self._no_attributes
+                                  float(light.ambient), float(light.diffuse), attributes)
+        elif shading == "phong":
+            raster.phong_vertices(self._world, self._world_normals, self._albedo, attributes)
+        return attributes
+
+    def _attributes(self, shading: str) -> np.ndarray:
+        """The buffer of what the rasterizer interpolates for ``shading``."""
+        buffers = {"gouraud": self._colours, "phong": self._phong_attributes}
+        return buffers.get(shading, self._no_attributes)
+
+    def _rasterize(self, rasterize, triangles, attributes, lighting) -> None:
+        """Draw ``triangles`` of the projected vertices into the frame buffers."""
+        rasterize(triangles, self._screen_xy, self._screen_z, self._outcodes, attributes,
+                  lighting, self._colour.reshape(-1), self._depth.reshape(-1),
+                  self._depth.shape[1], self._spans, self._planes)
 
     def _draw_clipped(self, rasterize, triangles, attributes, lighting, width, height) -> None:
         """Draw the triangles that cross a clipping plane: clip them into a small mesh in

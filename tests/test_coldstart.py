@@ -1,0 +1,86 @@
+"""A cold start: the kernels compiled ahead of the first frame, two processes at a time."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import threading
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from engine import coldstart
+from engine.config import load_config
+from engine.scene import Scene, SceneRenderer
+
+ROOT = Path(__file__).resolve().parent.parent
+DEFAULT = ROOT / "configs" / "biceps.toml"
+
+# In a fresh interpreter, so that no kernel has a version from elsewhere: prepare, then
+# render, and print the versions the frame had to add (none, if prepare made the right ones).
+ADDED_BY_THE_FRAME = """
+import json, sys
+from numba.core.registry import CPUDispatcher
+from engine import raster
+from engine.config import load_config
+from engine.render import Renderer
+from engine.scene import Scene, SceneRenderer
+
+kernels = {name: kernel for name, kernel in vars(raster).items()
+           if isinstance(kernel, CPUDispatcher)}
+added = {}
+for shading in ("gouraud", "phong", "overdraw"):
+    Renderer().prepare(shading)
+    before = {name: set(kernel.signatures) for name, kernel in kernels.items()}
+    scene = Scene.of(load_config(sys.argv[1])).with_render(shading=shading)
+    SceneRenderer().render(scene, 64, 48)
+    added[shading] = sorted(name for name, kernel in kernels.items()
+                            if set(kernel.signatures) != before[name])
+print(json.dumps(added))
+"""
+
+
+def test_prepare_makes_the_very_kernels_a_frame_runs():
+    process = subprocess.run([sys.executable, "-c", ADDED_BY_THE_FRAME, str(DEFAULT)],
+                             capture_output=True, text=True, cwd=ROOT, timeout=300)
+    assert process.returncode == 0, process.stderr
+    assert json.loads(process.stdout) == {"gouraud": [], "phong": [], "overdraw": []}
+
+
+@pytest.mark.skipif(coldstart._cores() < 2, reason="the second process needs a second core")
+def test_on_a_cold_cache_the_rasterizer_comes_from_the_second_process(tmp_path):
+    out = tmp_path / "arm.png"
+    environment = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache"),
+                   "NUMBA_DEBUG_CACHE": "1"}
+    process = subprocess.run(
+        [sys.executable, "-m", "engine.cli", "snapshot", str(DEFAULT), "-o", str(out),
+         "--size", "96x54"],
+        capture_output=True, text=True, cwd=ROOT, env=environment, timeout=300,
+    )  # fmt: skip
+    assert process.returncode == 0, process.stderr
+    # The child saved the rasterizer, and the command's own process loaded it from there
+    # instead of compiling it too.
+    log = process.stdout.splitlines()
+    assert any("data saved" in line and "rasterize_gouraud" in line for line in log)
+    assert any("data loaded" in line and "rasterize_gouraud" in line for line in log)
+    expected = SceneRenderer().render(Scene.of(load_config(DEFAULT)), 96, 54)
+    np.testing.assert_array_equal(np.asarray(Image.open(out)), expected)
+
+
+def test_there_is_no_fork_beside_another_thread(monkeypatch):
+    def no_fork():
+        raise AssertionError("forked beside another thread")
+
+    monkeypatch.setattr(os, "fork", no_fork)
+    release = threading.Event()
+    other = threading.Thread(target=release.wait)
+    other.start()
+    try:
+        coldstart.prepare_kernels("gouraud")
+    finally:
+        release.set()
+        other.join()
