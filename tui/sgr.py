@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 from textual.driver import Driver
 
-from engine.jit import ngjit
+from engine.jit import helper, ngjit
 
 ESC, BEL = 0x1B, 0x07
 
@@ -51,7 +51,7 @@ VALUE = (1 << 32) - 1
 MAX_PARAMETERS = 64
 
 
-@ngjit
+@helper
 def _put_number(out, at, number):
     """Write ``number`` (>= 0) in decimal at ``out[at:]``; return where it ends."""
     digits = 1
@@ -63,7 +63,7 @@ def _put_number(out, at, number):
     return at + digits
 
 
-@ngjit
+@helper
 def _put_colour(out, at, colour, foreground):
     """Write the codes of ``colour`` (packed as above); return where they end."""
     kind, value = colour & ~VALUE, colour & VALUE
@@ -85,7 +85,7 @@ def _put_colour(out, at, colour, foreground):
     return at
 
 
-@ngjit
+@helper
 def _put_sgr(out, at, sent, wanted, attributes, reset):
     """Write an SGR sequence taking the terminal from ``sent`` to ``wanted`` (each
     attributes, foreground, background): from a reset, or changing only what differs."""
@@ -113,7 +113,7 @@ def _put_sgr(out, at, sent, wanted, attributes, reset):
     return at + 1
 
 
-@ngjit
+@helper
 def _put_change(out, at, sent, wanted, attributes):
     """Write the shortest SGR sequence taking the terminal from ``sent`` to ``wanted``, if
     they differ; return where it ends."""
@@ -124,14 +124,14 @@ def _put_change(out, at, sent, wanted, attributes):
         end = _put_sgr(out, at, sent, wanted, attributes, False)
     reset_end = _put_sgr(out, end, sent, wanted, attributes, True)
     if end == at or reset_end - end < end - at:
-        out[at:at + reset_end - end] = out[end:reset_end].copy()
+        _copy(out, end, reset_end, out, at)  # the reset's way is shorter: keep it instead
         end = at + reset_end - end
     for index in range(3):
         sent[index] = wanted[index]
     return end
 
 
-@ngjit
+@helper
 def _parse_sgr(source, start, end, state, attributes, off_masks, parameters):
     """Apply the SGR parameters in ``source[start:end]`` to ``state``; False (and
     ``state`` undefined) if one is not understood."""
@@ -187,7 +187,7 @@ def _parse_sgr(source, start, end, state, attributes, off_masks, parameters):
     return True
 
 
-@ngjit
+@helper
 def _sequence_end(source, at):
     """Where the escape sequence starting at ``source[at]`` (ESC) ends; an unfinished one
     ends with ``source``."""
@@ -211,17 +211,17 @@ def _sequence_end(source, at):
 
 
 @ngjit
-def minimize_sgr(source, out, length, attributes, off_masks):
+def minimize_sgr(source, out, length, attributes, off_masks, states, parameters):
     """Rewrite ``source`` into ``out`` with only the SGR codes that change anything.
 
     source: (n,) uint8 UTF-8; out: (m,) uint8, written; length: (1,) int64, set to the
     bytes written, or -1 if ``out`` was too small. ``attributes``: the attribute codes, one
-    bit each; ``off_masks[code]``: the bits a code turns off.
+    bit each; ``off_masks[code]``: the bits a code turns off. states: (3, 3) int64 zeros
+    and parameters: (MAX_PARAMETERS,) int64, scratch (passed in: numba's ``np.zeros`` costs
+    a cold start a few tenths of a second to compile).
     """
-    sent = np.zeros(3, np.int64)  # attributes, foreground, background
-    wanted = np.zeros(3, np.int64)
-    trial = np.zeros(3, np.int64)
-    parameters = np.zeros(MAX_PARAMETERS, np.int64)
+    # Each state: attributes, foreground, background.
+    sent, wanted, trial = states[0], states[1], states[2]
     size, room = len(source), len(out) - 256  # two ways to change state take less
     at, written, verbatim = 0, 0, False
     while at < size:
@@ -232,9 +232,9 @@ def minimize_sgr(source, out, length, attributes, off_masks):
             end = _sequence_end(source, at)
             final = source[end - 1] if end - at > 2 and source[at + 1] == 91 else 0  # CSI
             if final == 109:  # m: SGR
-                trial[:] = wanted
+                _copy(wanted, 0, 3, trial, 0)
                 if _parse_sgr(source, at + 2, end - 1, trial, attributes, off_masks, parameters):
-                    wanted[:] = trial
+                    _copy(trial, 0, 3, wanted, 0)
                     at = end
                     continue
                 verbatim, end = True, size  # not understood: the rest goes as it is
@@ -243,7 +243,7 @@ def minimize_sgr(source, out, length, attributes, off_masks):
         if written + end - at > room:
             length[0] = -1
             return
-        out[written:written + end - at] = source[at:end]
+        _copy(source, at, end, out, written)
         written += end - at
         at = end
     if not verbatim:
@@ -251,7 +251,17 @@ def minimize_sgr(source, out, length, attributes, off_masks):
     length[0] = written
 
 
-@ngjit
+@helper
+def _copy(source, start, end, target, at):
+    """target[at:at + end - start] = source[start:end], front to back (overlapping only with
+    at <= start). A loop, not slice assignment: numba compiles that with its error message,
+    string formatting and all, which took five of the six seconds of this module's first,
+    cold compilation, before the app could show anything."""
+    for index in range(end - start):
+        target[at + index] = source[start + index]
+
+
+@helper
 def _text_end(source, at):
     """Where the text starting at ``source[at]`` ends: at the next ESC, or the end."""
     for index in range(at, len(source)):
@@ -267,7 +277,8 @@ def minimized(text: str) -> str:
     source = np.frombuffer(text.encode("utf-8", "surrogatepass"), np.uint8)
     out = np.empty(len(source) + len(source) // 2 + 512, np.uint8)
     length = np.zeros(1, np.int64)
-    minimize_sgr(source, out, length, ATTRIBUTES, OFF_MASKS)
+    minimize_sgr(source, out, length, ATTRIBUTES, OFF_MASKS, np.zeros((3, 3), np.int64),
+                 np.empty(MAX_PARAMETERS, np.int64))
     if length[0] < 0:  # longer than it was: a pathological mix of codes, leave it be
         return text
     return out[: length[0]].tobytes().decode("utf-8", "surrogatepass")
