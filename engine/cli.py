@@ -131,7 +131,7 @@ def app(config: Path, colors: str, fps: int | None) -> None:
     loaded = load_config(config)  # fail here, before the terminal switches screens
     from tui.app import run_app
 
-    run_app(loaded, colors=colors, fps=fps)
+    run_app(loaded, colors=colors, fps=fps, compile_aside=_own_process())
 
 
 @main.command()

@@ -24,13 +24,15 @@ ROOT = Path(__file__).resolve().parent.parent
 UPPER_HALF = "▀".encode()
 
 
-def _first_picture(config: Path, *options: str, timeout: float = 120.0) -> bytes:
-    """What ``biceps app`` writes to a 100x30 terminal until its first picture is out."""
+def _first_picture(config: Path, *options: str, timeout: float = 120.0,
+                   **variables: str) -> bytes:
+    """What ``biceps app`` writes to a 100x30 terminal until its first picture is out;
+    ``variables`` are added to its environment."""
     master, slave = os.openpty()
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 100, 0, 0))
     environment = {key: value for key, value in os.environ.items()
                    if not key.startswith("TEXTUAL")}
-    environment.update(TERM="xterm-256color", COLORTERM="truecolor")
+    environment.update(TERM="xterm-256color", COLORTERM="truecolor", **variables)
     process = subprocess.Popen(
         [sys.executable, "-m", "engine.cli", "app", str(config), *options],
         stdin=slave, stdout=slave, stderr=slave, env=environment, cwd=ROOT,
@@ -73,8 +75,12 @@ def test_a_truecolor_terminal_gets_the_picture_in_rgb(config_path):
     assert any(re.search(r"(^|;)38;2;\d+;\d+;\d+;48;2;", code) for code in codes)
 
 
-def test_the_picture_on_the_terminal_is_the_frame_exactly(config_path):
-    output = _first_picture(config_path, "--colors", "truecolor").decode()
+@pytest.mark.parametrize("cache", ["warm", "cold"])
+def test_the_picture_on_the_terminal_is_the_frame_exactly(config_path, tmp_path, cache):
+    # Cold: an empty numba cache, as on a first run, where a child process compiles the
+    # kernels for the first frame (engine/coldstart.py).
+    variables = {"NUMBA_CACHE_DIR": str(tmp_path / "cache")} if cache == "cold" else {}
+    output = _first_picture(config_path, "--colors", "truecolor", **variables).decode()
     screen = Screen(100, 30).feed(output)
     # The picture is inside the first rounded box from the top left.
     right = screen.text(0).index("╮")

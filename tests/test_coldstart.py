@@ -84,3 +84,38 @@ def test_there_is_no_fork_beside_another_thread(monkeypatch):
     finally:
         release.set()
         other.join()
+
+
+# The child's job sleeps for ten minutes: waiting with a timeout, or stopping it from
+# another thread, must end it and leave no child behind.
+HANGING_CHILD = """
+import os, sys, threading, time
+from engine.coldstart import compile_aside
+
+def no_child_left():
+    try:
+        os.waitpid(-1, os.WNOHANG)
+    except ChildProcessError:
+        return True
+    return False
+
+aside = compile_aside(lambda: time.sleep(600))
+if sys.argv[1] == "timeout":
+    aside.wait(timeout=0.2)
+else:
+    waiting = threading.Thread(target=aside.wait)
+    waiting.start()
+    time.sleep(0.2)
+    aside.stop()
+    waiting.join()
+print(no_child_left())
+"""
+
+
+@pytest.mark.skipif(coldstart._cores() < 2, reason="no second process on one core")
+@pytest.mark.parametrize("how", ["timeout", "stop"])
+def test_a_child_that_does_not_end_is_stopped(how):
+    process = subprocess.run([sys.executable, "-c", HANGING_CHILD, how], capture_output=True,
+                             text=True, cwd=ROOT, timeout=60)
+    assert process.returncode == 0, process.stderr
+    assert process.stdout.strip() == "True"

@@ -24,6 +24,8 @@ from textual.notifications import SeverityLevel
 from textual.reactive import var
 from textual.screen import Screen
 
+from engine import coldstart
+from engine.coldstart import Aside
 from engine.config import Config, load_config, save_config
 from engine.errors import BicepsError
 from engine.export import check_writable, parse_size, write_png
@@ -44,6 +46,7 @@ from tui.changes import (
     zoomed,
 )
 from tui.commands import KeyCommands
+from tui.halfblocks import HalfBlocks
 from tui.pacing import Pacer, cursor_question
 from tui.parse import parse_path
 from tui.screens.choice import Answer, Choice
@@ -107,11 +110,14 @@ class BicepsApp(App[None]):
     scene: var[Scene] = var(None)
     unsaved: var[bool] = var(False)
 
-    def __init__(self, config: Config, fps: float | None = None) -> None:
+    def __init__(self, config: Config, fps: float | None = None,
+                 kernels: Aside | None = None) -> None:
         """``fps``: the most frames a second the picture is redrawn at (None: no cap but
-        the terminal's pace and Textual's own limit)."""
+        the terminal's pace and Textual's own limit). ``kernels``: a child process
+        compiling a frame's kernels, for the first frame to wait for."""
         super().__init__()
         self.pacer = Pacer(self._ask_cursor_position, self.set_timer, fps)
+        self._kernels = kernels
         self.config = config
         self._saved = Scene.of(config)
         self.set_reactive(BicepsApp.scene, self._saved)
@@ -122,7 +128,7 @@ class BicepsApp(App[None]):
         self._notified_until: dict[str, float] = {}
 
     def get_default_screen(self) -> Screen:
-        return MainScreen(self.pacer)
+        return MainScreen(self.pacer, self._kernels)
 
     def get_driver_class(self) -> type[Driver]:
         # Textual's own driver, sending only the colour codes that change (tui/sgr.py).
@@ -353,12 +359,21 @@ def _same_file(path: Path, other: Path) -> bool:
     return os.path.exists(other) and os.path.samefile(path, other)
 
 
-def run_app(config: Config, colors: str = "auto", fps: float | None = None) -> None:
+def run_app(config: Config, colors: str = "auto", fps: float | None = None,
+            compile_aside: bool = False) -> None:
     """Run the app on ``config``; ``colors`` is ``auto``, ``truecolor`` or ``256``; ``fps``
-    caps the frame rate."""
+    caps the frame rate. ``compile_aside``: compile a frame's kernels in a forked child
+    while Textual starts (see engine/coldstart.py), for a process of its own."""
     if colors != "auto":
         os.environ["TEXTUAL_COLOR_SYSTEM"] = colors
         # Textual reads the variable once, when it is first imported, which has happened
         # by now; its console takes the colour system from this constant.
         textual.constants.COLOR_SYSTEM = colors
-    BicepsApp(config, fps=fps).run()
+    kernels = coldstart.compile_aside(partial(_draw_a_frame, config)) if compile_aside else None
+    BicepsApp(config, fps=fps, kernels=kernels).run()
+
+
+def _draw_a_frame(config: Config) -> None:
+    """What the render thread does, on a tiny frame: so numba compiles (or loads) the very
+    kernels it runs."""
+    HalfBlocks().lines(SceneRenderer().render(Scene.of(config), 2, 2))

@@ -9,6 +9,7 @@ from textual.screen import Screen
 from textual.widgets import Footer, Static
 
 from engine.arm import Arm
+from engine.coldstart import Aside
 from engine.scene import Scene
 from tui.pacing import Pacer
 from tui.widgets.node_table import NodeTable
@@ -22,14 +23,15 @@ SMALLEST_USEFUL = (60, 16)
 class MainScreen(Screen[None]):
     AUTO_FOCUS = "#viewport"
 
-    def __init__(self, pacer: Pacer | None = None) -> None:
+    def __init__(self, pacer: Pacer | None = None, kernels: Aside | None = None) -> None:
         super().__init__()
         self._pacer = pacer
+        self._kernels = kernels
         self._arm: Arm | None = None
 
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
-            yield Viewport(self._pacer, id="viewport")
+            yield Viewport(self._pacer, self._kernels, id="viewport")
             with Vertical(id="side"):
                 yield Stats(id="stats")
                 yield NodeTable(id="nodes")
