@@ -99,10 +99,12 @@ def prepare_kernels(shading: str) -> None:
     try:
         with event.install_recorder("numba:compile") as compiled:
             Renderer().prepare(shading, rasterizer=False)
-        if not compiled.buffer:  # all from the cache: so, most likely, is the rasterizer
-            aside.stop()
-    finally:
-        aside.wait()
+    except BaseException:  # an interrupt, say: no use waiting for the child
+        aside.stop()
+        raise
+    if not compiled.buffer:  # all from the cache: so, most likely, is the rasterizer
+        aside.stop()
+    aside.wait()
 
 
 def _cores() -> int:
