@@ -25,7 +25,6 @@ from textual.reactive import var
 from textual.screen import Screen
 
 from engine import coldstart
-from engine.coldstart import Aside
 from engine.config import Config, load_config, save_config
 from engine.errors import BicepsError
 from engine.export import check_writable, parse_size, write_png
@@ -111,7 +110,7 @@ class BicepsApp(App[None]):
     unsaved: var[bool] = var(False)
 
     def __init__(self, config: Config, fps: float | None = None,
-                 kernels: Aside | None = None) -> None:
+                 kernels: coldstart.Aside | None = None) -> None:
         """``fps``: the most frames a second the picture is redrawn at (None: no cap but
         the terminal's pace and Textual's own limit). ``kernels``: a child process
         compiling a frame's kernels, for the first frame to wait for."""
