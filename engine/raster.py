@@ -266,29 +266,31 @@ def downsample(source, factor, target, width):
 
 
 @helper
-def _pixel_box(x0, y0, x1, y1, x2, y2, width, height):
-    """The pixels whose centres lie in the bounding box of a triangle (fixed point, as in
-    `triangle_spans`), clipped to the screen: rows first to last, columns left to right.
+def _pixel_range(a, b, c, size):
+    """The pixels along one axis, clipped to ``0 .. size - 1``, whose centres lie between
+    the least and the greatest of three fixed-point coordinates (as in `triangle_spans`).
 
-    Along each axis the centre of pixel p is at ``p ONE + HALF``, so the pixels whose
-    centres lie in [low, high] run from ``ceil((low - HALF) / ONE)`` to
-    ``floor((high - HALF) / ONE)``. Conditional expressions rather than the builtin ``min``
-    and ``max``, which numba compiles as functions of their own for each caller (tens of
-    milliseconds apiece of a cold start)."""
-    low = y0 if y0 < y1 else y1
-    low = low if low < y2 else y2
-    high = y0 if y0 > y1 else y1
-    high = high if high > y2 else y2
+    The centre of pixel p is at ``p ONE + HALF``, so the pixels whose centres lie in
+    [low, high] run from ``ceil((low - HALF) / ONE)`` to ``floor((high - HALF) / ONE)``.
+    Conditional expressions rather than the builtin ``min`` and ``max``, which numba
+    compiles as functions of their own for each caller (tens of milliseconds apiece of a
+    cold start)."""
+    low = a if a < b else b
+    low = low if low < c else c
+    high = a if a > b else b
+    high = high if high > c else c
     first = -((HALF - low) >> SUBPIXEL_BITS)
     last = (high - HALF) >> SUBPIXEL_BITS
-    low = x0 if x0 < x1 else x1
-    low = low if low < x2 else x2
-    high = x0 if x0 > x1 else x1
-    high = high if high > x2 else x2
-    left = -((HALF - low) >> SUBPIXEL_BITS)
-    right = (high - HALF) >> SUBPIXEL_BITS
-    return ((first if first > 0 else 0), (last if last < height - 1 else height - 1),
-            (left if left > 0 else 0), (right if right < width - 1 else width - 1))
+    return (first if first > 0 else 0), (last if last < size - 1 else size - 1)
+
+
+@helper
+def _pixel_box(x0, y0, x1, y1, x2, y2, width, height):
+    """The pixels whose centres lie in the bounding box of a triangle (fixed point, as in
+    `triangle_spans`), clipped to the screen: rows first to last, columns left to right."""
+    first, last = _pixel_range(y0, y1, y2, height)
+    left, right = _pixel_range(x0, x1, x2, width)
+    return first, last, left, right
 
 
 @helper
