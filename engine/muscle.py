@@ -142,18 +142,38 @@ class _VolumeLaw:
 
 
 @dataclass(frozen=True, eq=False)
+class _Rest:
+    """The reference shape a muscle is solved from. Every length of one muscle shares it,
+    so what depends on it alone (the volume law, the conserved volume) is worked out once,
+    not at every length change."""
+
+    radii: np.ndarray  # (n,) float64, read-only
+    growth: np.ndarray  # (n,) float64, read-only
+    length: float
+    volume_mode: VolumeMode
+
+    @cached_property
+    def volume(self) -> float:
+        return volume(self.radii, self.length, self.volume_mode)
+
+    @cached_property
+    def law(self) -> _VolumeLaw:
+        return _VolumeLaw.of(self.radii, self.growth, self.volume_mode == "closed")
+
+    @cached_property
+    def longest_length(self) -> float:
+        return self.law.longest(self.volume / np.pi, len(self.radii) - 1)
+
+
+@dataclass(frozen=True, eq=False)
 class Muscle:
     """A muscle at some length, together with the reference shape it is solved from.
 
-    Build one with :meth:`Muscle.of`. ``radii`` are the current radii (cm), ``growth`` the
-    growth coefficients, ``length`` the current length (cm); the reference is the shape whose
-    volume is conserved.
+    Build one with :meth:`Muscle.of`. ``radii`` are the current radii (cm), ``length`` the
+    current length (cm); the reference (rest) shape is the one whose volume is conserved.
     """
 
-    reference_radii: np.ndarray  # (n,) float64, read-only
-    growth: np.ndarray  # (n,) float64, read-only
-    reference_length: float
-    volume_mode: VolumeMode
+    rest: _Rest
     length: float
     radii: np.ndarray  # (n,) float64, read-only
     step: float  # the d of SPEC 2.2 that takes the reference to this length
@@ -170,15 +190,28 @@ class Muscle:
         radii = _read_only(radii)
         growth = _read_only(growth)
         _check_profile(radii, growth, length, volume_mode)
-        return cls(radii, growth, float(length), volume_mode, float(length), radii, 0.0)
+        return cls(_Rest(radii, growth, float(length), volume_mode), float(length), radii, 0.0)
+
+    @property
+    def reference_radii(self) -> np.ndarray:
+        return self.rest.radii
+
+    @property
+    def growth(self) -> np.ndarray:
+        """(n,) float64: each node's growth coefficient."""
+        return self.rest.growth
+
+    @property
+    def reference_length(self) -> float:
+        return self.rest.length
+
+    @property
+    def volume_mode(self) -> VolumeMode:
+        return self.rest.volume_mode
 
     @property
     def node_count(self) -> int:
         return len(self.radii)
-
-    @property
-    def spacing(self) -> float:
-        return self.length / (self.node_count - 1)
 
     @property
     def positions(self) -> np.ndarray:
@@ -190,10 +223,10 @@ class Muscle:
         """The volume (cm^3) of the current shape, computed directly from its radii."""
         return volume(self.radii, self.length, self.volume_mode)
 
-    @cached_property
+    @property
     def reference_volume(self) -> float:
         """The volume (cm^3) every length change conserves."""
-        return volume(self.reference_radii, self.reference_length, self.volume_mode)
+        return self.rest.volume
 
     @property
     def volume_error(self) -> float:
@@ -209,14 +242,10 @@ class Muscle:
         """The circumference (cm) at the thickest node."""
         return 2.0 * np.pi * self.max_radius
 
-    @cached_property
-    def _law(self) -> _VolumeLaw:
-        return _VolumeLaw.of(self.reference_radii, self.growth, self.volume_mode == "closed")
-
-    @cached_property
+    @property
     def longest_length(self) -> float:
         """The length (cm) at which a radius would reach zero; ``inf`` if none ever does."""
-        return self._law.longest(self.reference_volume / np.pi, self.node_count - 1)
+        return self.rest.longest_length
 
     def at_length(self, length: float) -> Muscle:
         """This muscle contracted or stretched to ``length`` (cm) at the same volume."""
@@ -226,10 +255,9 @@ class Muscle:
         if length == self.length:
             return self
         if length == self.reference_length:  # exactly the rest shape, not a 1e-17 step off it
-            return Muscle(self.reference_radii, self.growth, length, self.volume_mode, length,
-                          self.reference_radii, 0.0)
+            return Muscle(self.rest, length, self.reference_radii, 0.0)
         dx = length / (self.node_count - 1)
-        step = self._law.solve(self.reference_volume / np.pi, dx)
+        step = self.rest.law.solve(self.reference_volume / np.pi, dx)
         if step is None:
             raise RefusedChange(self._too_long_message(length))
         radii = self.reference_radii + step * self.growth
@@ -241,13 +269,10 @@ class Muscle:
         if radii.min() <= 0:
             raise RefusedChange(self._too_long_message(length))
         radii.flags.writeable = False
-        return Muscle(
-            self.reference_radii, self.growth, self.reference_length, self.volume_mode,
-            length, radii, step,
-        )  # fmt: skip
+        return Muscle(self.rest, length, radii, step)
 
     def _too_long_message(self, length: float) -> str:
-        node = self._law.first_to_vanish + 1
+        node = self.rest.law.first_to_vanish + 1
         return (
             f"cannot stretch to {length:.2f} cm: node {node}'s radius would fall to zero "
             f"at {self.longest_length:.2f} cm, the longest this muscle can be"
