@@ -117,10 +117,8 @@ class BicepsApp(App[None]):
         super().__init__()
         self.pacer = Pacer(self._ask_cursor_position, self.set_timer, fps)
         self._kernels = kernels
-        self.config = config
-        self._saved = Scene.of(config)
+        self._adopt(config, Scene.of(config))
         self.set_reactive(BicepsApp.scene, self._saved)
-        self.sub_title = config.path.name
         self._export_path = f"{config.path.stem}.png"
         self._export_size = "1920x1080"
         self._last_export: Path | None = None
@@ -251,17 +249,24 @@ class BicepsApp(App[None]):
         except BicepsError as error:
             self.notify(str(error), title="Not saved", severity="error", markup=False)
             return False
-        self.config = config
-        self._saved = scene
+        self._adopt(config, scene)
         self.unsaved = False
-        self.sub_title = config.path.name
         self.notify(f"Saved {config.path}", markup=False)
         return True
 
+    def _adopt(self, config: Config, saved: Scene) -> None:
+        """Make ``config`` the file the app edits, ``saved`` the scene it holds."""
+        self.config = config
+        self._saved = saved
+        self.sub_title = config.path.name
+
+    def _config_file_field(self) -> Field:
+        return Field("File", str(self.config.path), parse_path, PathSuggester((".toml",)))
+
     @work
     async def action_save_as(self) -> None:
-        file = Field("File", str(self.config.path), parse_path, PathSuggester((".toml",)))
-        answer = await self.push_screen_wait(Prompt("Save as", [file], accept="Save"))
+        answer = await self.push_screen_wait(
+            Prompt("Save as", [self._config_file_field()], accept="Save"))
         if answer is None:
             return
         (path,) = answer
@@ -272,8 +277,8 @@ class BicepsApp(App[None]):
 
     @work
     async def action_open(self) -> None:
-        file = Field("File", str(self.config.path), parse_path, PathSuggester((".toml",)))
-        answer = await self.push_screen_wait(Prompt("Open a configuration", [file], accept="Open"))
+        answer = await self.push_screen_wait(
+            Prompt("Open a configuration", [self._config_file_field()], accept="Open"))
         if answer is None:
             return
         try:
@@ -283,10 +288,8 @@ class BicepsApp(App[None]):
             return
         if self.unsaved and not await self._unsaved_edits_settled("open"):
             return
-        self.config = config
-        self._saved = Scene.of(config)
+        self._adopt(config, Scene.of(config))
         self.scene = self._saved
-        self.sub_title = config.path.name
         self._export_path = f"{config.path.stem}.png"
 
     @work
