@@ -23,7 +23,7 @@ SMALLEST_USEFUL = (60, 16)
 class MainScreen(Screen[None]):
     AUTO_FOCUS = "#viewport"
 
-    def __init__(self, pacer: Pacer | None = None, kernels: Aside | None = None) -> None:
+    def __init__(self, pacer: Pacer, kernels: Aside | None) -> None:
         super().__init__()
         self._pacer = pacer
         self._kernels = kernels

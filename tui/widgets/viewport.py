@@ -35,7 +35,7 @@ from tui.latest_only import LatestOnly
 from tui.pacing import Pacer
 
 
-PAINT_TRIES = 8  # refreshes to wait for a frame to be drawn before pacing on regardless
+DRAW_TRIES = 8  # refreshes to wait for a frame to be written before pacing on regardless
 
 
 @dataclass(frozen=True)
@@ -84,10 +84,9 @@ class Viewport(Widget, can_focus=True):
             super().__init__()
             self.steps = steps
 
-    def __init__(self, pacer: Pacer | None = None, kernels: Aside | None = None, *,
-                 id: str | None = None) -> None:
-        """``kernels``: a child process compiling the kernels a frame runs, to wait for
-        before the first frame."""
+    def __init__(self, pacer: Pacer, kernels: Aside | None, *, id: str | None = None) -> None:
+        """``pacer`` says when the next frame may be made; ``kernels``: a child process
+        compiling the kernels a frame runs, to wait for before the first frame."""
         super().__init__(id=id)
         self._pacer = pacer
         self._kernels = kernels
@@ -95,7 +94,6 @@ class Viewport(Widget, can_focus=True):
         self._requests: LatestOnly[_Request] = LatestOnly()
         self._requested = 0  # the number of the newest request
         self._shown = 0  # the number of the request whose frame is on screen
-        self._painted = 0  # the number of the request whose frame Textual last drew
         self._strips: list[Strip] = []
         self._background = Style()
         self._captions = ("", "")
@@ -112,8 +110,6 @@ class Viewport(Widget, can_focus=True):
         self._request_frame()
 
     def on_mount(self) -> None:
-        if self._pacer is None:  # nothing to ask: frames follow one another at once
-            self._pacer = Pacer(lambda column: False, self.set_timer)
         self._render_frames()
 
     def on_unmount(self) -> None:
@@ -154,18 +150,20 @@ class Viewport(Widget, can_focus=True):
         self._shown = message.number
         if message.lines.changed:  # (no regions would mean all of them)
             self.refresh(*(self._rows(y, rows) for y, rows in message.lines.changed))
-        else:
-            self._painted = message.number  # the same picture: nothing to draw
         self._caption(*_view_captions(message.scene))
-        self.call_after_refresh(self._when_painted, PAINT_TRIES)
+        self.call_after_refresh(self._when_drawn, DRAW_TRIES)
 
-    def _when_painted(self, tries: int) -> None:
+    def _when_drawn(self, tries: int) -> None:
         # Once Textual has written this frame, the pacer says when the next may be made.
-        # "After refresh" can come before the refresh that draws it (the screen may go idle
-        # before it hears that this widget is dirty); asking the terminal then would time
-        # the wrong write. A hidden viewport is never drawn, hence the limit.
-        if self._painted < self._shown and tries > 1:
-            self.call_after_refresh(self._when_painted, tries - 1)
+        # "After refresh" callbacks can run before the refresh that draws the new lines
+        # (the screen runs them without painting during a batch update, for one); asking
+        # the terminal then would time the wrong write. Textual empties a widget's repaint
+        # regions in the very call that writes them out (Compositor.update_widgets, then
+        # App._display), so while some remain the frame is not out yet. A private
+        # attribute: Textual is pinned to 8.x. A hidden viewport is never drawn, hence the
+        # limit.
+        if self._repaint_regions and tries > 1:
+            self.call_after_refresh(self._when_drawn, tries - 1)
         else:
             self._pacer.after_frame(self._requests.done)
 
@@ -206,7 +204,6 @@ class Viewport(Widget, can_focus=True):
                 if not isinstance(line_filter, ANSIToTruecolor)]
 
     def render_line(self, y: int) -> Strip:
-        self._painted = self._shown
         width = self.size.width
         if y >= len(self._strips):
             return Strip.blank(width, self._background)
