@@ -45,6 +45,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from tui.changes import TURN_STEP  # degrees per press of the right arrow
+
 ROOT = Path(__file__).resolve().parent.parent
 CONFIG = ROOT / "configs" / "biceps.toml"
 
@@ -58,7 +60,6 @@ RIGHT = b"\x1b[C"
 MARKER_TAIL = max(len(SYNC_START), len(SYNC_QUERY), len(CURSOR_QUERY)) - 1
 
 CAPTION = re.compile(rb"yaw (-?\d+(?:\.\d+)?)\xc2\xb0")
-TURN_STEP = 5.0  # degrees per press of the right arrow (tui/changes.py)
 STEPS_PER_TURN = round(360 / TURN_STEP)
 
 TYPEMATIC = 30.0  # key presses per second
@@ -69,9 +70,7 @@ DRAIN_TIMEOUT = 60.0
 
 @dataclass
 class Frame:
-    start: float  # when its first byte was read
     end: float  # when its last byte was read
-    size: int  # bytes
     yaw: float | None  # the caption's yaw, if the frame drew one
 
 
@@ -89,7 +88,6 @@ class Terminal:
     _recent: bytearray = field(default_factory=bytearray)  # the output from _recent_at on
     _recent_at: int = 0
     _frame_at: int | None = None  # where the frame being read began
-    _frame_start: float = 0.0
     _tokens: float = 0.0
     _refilled: float = 0.0
 
@@ -161,13 +159,13 @@ class Terminal:
             elif marker == CURSOR_QUERY:
                 os.write(self.master, self._cursor_report(at))
             elif marker == SYNC_START:
-                self._frame_at, self._frame_start = at, now
+                self._frame_at = at
             elif self._frame_at is not None:
                 end = at + len(SYNC_END)
                 frame = self._recent[self._frame_at - self._recent_at:end - self._recent_at]
                 captions = CAPTION.findall(frame)
                 yaw = float(captions[-1]) if captions else None
-                self.frames.append(Frame(self._frame_start, now, len(frame), yaw))
+                self.frames.append(Frame(now, yaw))
                 self._frame_at = None
         if self._frame_at is None:  # keep only what a marker or a question may need
             self._recent = self._recent[-32:]
