@@ -21,14 +21,14 @@ from __future__ import annotations
 
 import numpy as np
 from textual.driver import Driver
+from textual.strip import SGR_STYLES
 
 from engine.jit import helper, ngjit
 
 ESC, BEL = 0x1B, 0x07
 
-# The attributes Textual writes (textual/strip.py SGR_STYLES), one bit each, and the codes
-# that turn them off again.
-ATTRIBUTES = np.array([1, 2, 3, 4, 5, 6, 7, 8, 9, 21, 51, 52, 53], np.int64)
+# The attributes Textual writes, one bit each, and the codes that turn them off again.
+ATTRIBUTES = np.array([int(code) for code in SGR_STYLES], np.int64)
 ATTRIBUTES_OFF = {22: (1, 2), 23: (3,), 24: (4, 21), 25: (5, 6), 27: (7,), 28: (8,),
                   29: (9,), 54: (51, 52), 55: (53,)}
 
