@@ -23,7 +23,7 @@ from pydantic import AllowInfNan, BaseModel, ConfigDict, Field, Strict, Validati
 from engine.arm import Arm
 from engine.errors import ConfigError, RefusedChange
 from engine.files import write_atomically
-from engine.muscle import Muscle
+from engine.muscle import Muscle, VolumeMode
 from engine.skeleton import Skeleton, check_skeleton
 
 DEFAULT_CONFIG = Path(__file__).resolve().parent.parent / "configs" / "biceps.toml"
@@ -44,7 +44,7 @@ class _Table(BaseModel):
 
 
 class MuscleTable(_Table):
-    volume: Literal["closed", "frusta"] = "closed"
+    volume: VolumeMode = "closed"
     length: Positive | None = None
     flexion: Degrees | None = None
     min_length: Positive | None = None
@@ -80,11 +80,29 @@ class MuscleTable(_Table):
 
 
 class SkeletonTable(_Table):
-    upper_arm: Positive = 29.1
-    origin_to_elbow: Positive = 30.2
-    elbow_to_insertion: Positive = 5.4
-    forearm: Positive = 25.4
-    flexion_range: tuple[Degrees, Degrees] = (0.0, 130.0)
+    """The arm's bones, as in :class:`Skeleton`, whose defaults these are."""
+
+    upper_arm: Positive = Skeleton.upper_arm
+    origin_to_elbow: Positive = Skeleton.origin_to_elbow
+    elbow_to_insertion: Positive = Skeleton.elbow_to_insertion
+    forearm: Positive = Skeleton.forearm
+    flexion_range: tuple[Degrees, Degrees] = (Skeleton.min_flexion, Skeleton.max_flexion)
+
+    @classmethod
+    def of(cls, skeleton: Skeleton) -> SkeletonTable:
+        return cls(
+            upper_arm=skeleton.upper_arm,
+            origin_to_elbow=skeleton.origin_to_elbow,
+            elbow_to_insertion=skeleton.elbow_to_insertion,
+            forearm=skeleton.forearm,
+            flexion_range=(skeleton.min_flexion, skeleton.max_flexion),
+        )
+
+    def skeleton(self) -> Skeleton:
+        low, high = self.flexion_range
+        return Skeleton(upper_arm=self.upper_arm, origin_to_elbow=self.origin_to_elbow,
+                        elbow_to_insertion=self.elbow_to_insertion, forearm=self.forearm,
+                        min_flexion=low, max_flexion=high)
 
 
 class ViewTable(_Table):
@@ -178,14 +196,7 @@ def _read_text(path: Path) -> str:
 
 def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
     muscle_table, skeleton_table = table.muscle, table.skeleton
-    skeleton = Skeleton(
-        upper_arm=skeleton_table.upper_arm,
-        origin_to_elbow=skeleton_table.origin_to_elbow,
-        elbow_to_insertion=skeleton_table.elbow_to_insertion,
-        forearm=skeleton_table.forearm,
-        min_flexion=skeleton_table.flexion_range[0],
-        max_flexion=skeleton_table.flexion_range[1],
-    )
+    skeleton = skeleton_table.skeleton()
 
     def fail(location: tuple, message: str) -> ConfigError:
         return ConfigError(_located(path, source, location, message))
@@ -322,23 +333,13 @@ def save_config(config: Config, arm: Arm, view: ViewTable, light: LightTable,
     target = Path(path) if path is not None else config.path
     document = tomlkit.parse(config.source)
     _write_muscle(document, arm)
-    _write_changes(document, "skeleton", SkeletonTable(), _skeleton_table(arm.skeleton))
+    _write_changes(document, "skeleton", SkeletonTable(), SkeletonTable.of(arm.skeleton))
     _write_changes(document, "view", ViewTable(), view)
     _write_changes(document, "light", LightTable(), light)
     _write_changes(document, "render", RenderTable(), render)
     text = tomlkit.dumps(document)
     write_atomically(target, text.encode("utf-8"))
     return load_config(target)
-
-
-def _skeleton_table(skeleton: Skeleton) -> SkeletonTable:
-    return SkeletonTable(
-        upper_arm=skeleton.upper_arm,
-        origin_to_elbow=skeleton.origin_to_elbow,
-        elbow_to_insertion=skeleton.elbow_to_insertion,
-        forearm=skeleton.forearm,
-        flexion_range=(skeleton.min_flexion, skeleton.max_flexion),
-    )
 
 
 def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm) -> None:
