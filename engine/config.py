@@ -25,6 +25,7 @@ from engine.errors import ConfigError, RefusedChange
 from engine.files import write_atomically
 from engine.muscle import Muscle, VolumeMode
 from engine.skeleton import Skeleton, check_skeleton
+from engine.transforms import Light
 
 DEFAULT_CONFIG = Path(__file__).resolve().parent.parent / "configs" / "biceps.toml"
 
@@ -117,13 +118,17 @@ class ViewTable(_Table):
 
 
 class LightTable(_Table):
-    """A point light in world space (cm), and the weights of the shading terms."""
+    """A point light in world space (cm), and the weights of the shading terms, as in
+    :class:`Light`, whose defaults these are."""
 
-    position: Vector = (60.0, 80.0, 120.0)
-    ambient: Fraction = 0.2
-    diffuse: Fraction = 0.8
-    specular: Fraction = 0.3
-    shininess: Annotated[Number, Field(ge=1, le=512)] = 24.0
+    position: Vector = Light.position
+    ambient: Fraction = Light.ambient
+    diffuse: Fraction = Light.diffuse
+    specular: Fraction = Light.specular
+    shininess: Annotated[Number, Field(ge=1, le=512)] = Light.shininess
+
+    def light(self) -> Light:
+        return Light(**self.model_dump())
 
 
 class RenderTable(_Table):

@@ -17,7 +17,7 @@ from engine.config import Config, LightTable, RenderTable, ViewTable, rgb
 from engine.mesh import Mesh, arm_meshes
 from engine.render import Renderer
 from engine.skeleton import Skeleton
-from engine.transforms import Camera, Light, frame_sphere, model_matrix
+from engine.transforms import Camera, frame_sphere, model_matrix
 
 
 @dataclass(frozen=True)
@@ -108,12 +108,10 @@ class SceneRenderer:
         """The picture of ``scene``: (height, width, 3) uint8, valid until the next call."""
         mesh, albedo = self._mesh_of(scene)
         camera, model = view_camera(scene, width / height)
-        light = scene.light
         return self._renderer.render(
             mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
-            Light(light.position, light.ambient, light.diffuse, light.specular, light.shininess),
-            width, height, shading=scene.render.shading, ssaa=scene.render.ssaa,
-            background=rgb(scene.render.background),
+            scene.light.light(), width, height, shading=scene.render.shading,
+            ssaa=scene.render.ssaa, background=rgb(scene.render.background),
         )  # fmt: skip
 
     def _mesh_of(self, scene: Scene) -> tuple[Mesh, np.ndarray]:
