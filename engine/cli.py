@@ -248,7 +248,7 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: boo
         check_writable(output, ".png")
     scene = posed_scene(config, length, flexion, **overrides)
     if _own_process():
-        prepare_kernels(scene.render.shading)  # forks, and freezes the heap: see coldstart
+        prepare_kernels(scene.render.shading, scene.render.ssaa)  # forks: see coldstart
     if ansi:
         from tui.ansi import print_picture  # rich, only for this mode
 

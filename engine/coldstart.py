@@ -89,11 +89,11 @@ def compile_aside(job: Callable[[], None]) -> Aside | None:
     return Aside(pid)
 
 
-def prepare_kernels(shading: str) -> None:
-    """Compile, or load from the cache, the kernels of a frame in ``shading``, the
-    rasterizer in a child process (see :func:`compile_aside`) while this one does the
-    vertex stage."""
-    aside = compile_aside(lambda: Renderer().prepare(shading, vertex_stage=False))
+def prepare_kernels(shading: str, ssaa: int = 1) -> None:
+    """Compile, or load from the cache, the kernels of a frame in ``shading`` with ``ssaa``
+    supersampling, the rasterizer's in a child process (see :func:`compile_aside`) while
+    this one does the vertex stage."""
+    aside = compile_aside(lambda: Renderer().prepare(shading, ssaa, vertex_stage=False))
     if aside is None:
         return  # the first frame compiles what it needs
     try:

@@ -237,10 +237,11 @@ def phong_vertices(world, world_normals, albedo, attributes):
 
 
 @ngjit
-def downsample(source, factor, target, width):
+def downsample(source, factor, target, width, columns):
     """Average each ``factor`` x ``factor`` block of pixels of source: (3 factor h factor w,)
     uint8 into one pixel of target: (3 h w,) uint8, rounding to nearest; ``width`` is w,
-    ``factor`` at most 16.
+    ``factor`` at most 16. columns: (3 factor w,) int32, scratch (passed in, as the
+    rasterizers' is).
 
     Each output row first sums its ``factor`` source rows column by column (a loop that
     vectorises), then adds up each block's columns. The division by the block's size is a
@@ -249,7 +250,6 @@ def downsample(source, factor, target, width):
     fine = 3 * width * factor  # bytes in a source row
     count = factor * factor
     reciprocal = ((1 << 24) + count - 1) // count
-    columns = np.empty(fine, np.int32)
     for y in range(target.shape[0] // (3 * width)):
         for i in range(fine):
             columns[i] = 0

@@ -79,23 +79,22 @@ class Renderer:
         if np.bitwise_or.reduce(self._outcodes) & raster.CLIP_MASK:
             self._draw_clipped(rasterize, triangles, attributes, lighting, full_w, full_h)
 
-        picture = self._colour
         if ssaa > 1:
-            raster.downsample(self._colour.reshape(-1), int(ssaa), self._output.reshape(-1),
-                              int(width))
-            picture = self._output
-        return _read_only(picture)
+            self._downsample()
+            return _read_only(self._output)
+        return _read_only(self._colour)
 
-    def prepare(self, shading: str = "gouraud", *, vertex_stage: bool = True,
+    def prepare(self, shading: str = "gouraud", ssaa: int = 1, *, vertex_stage: bool = True,
                 rasterizer: bool = True) -> None:
-        """Compile, or load from numba's cache, the kernels a frame in ``shading`` runs, or
-        those of one stage, without drawing anything (see ``engine/coldstart.py``).
+        """Compile, or load from numba's cache, the kernels a frame in ``shading`` with
+        ``ssaa`` supersampling runs, or those of one stage (the rasterizer's includes the
+        downsampling), without drawing anything (see ``engine/coldstart.py``).
 
         Each kernel runs once on buffers of the kinds `render` passes it, for one vertex,
         no triangle and one pixel, so that numba makes the very version `render` calls.
         """
         rasterize = RASTERIZERS[shading]
-        self._reserve_frame(1, 1, 1)
+        self._reserve_frame(1, 1, ssaa)
         self._reserve_vertices(1)
         if vertex_stage:
             self._transform(np.zeros((1, 3)), np.zeros((1, 3)), np.zeros((1, 3), np.float32),
@@ -105,6 +104,8 @@ class Renderer:
             no_triangles = _read_only(np.zeros((0, 3), np.int32))
             self._rasterize(rasterize, no_triangles, self._attributes(shading),
                             _lighting(Light(), Camera()))
+            if ssaa > 1:
+                self._downsample()
 
     def _transform(self, vertices, normals, albedo, model, view_projection, width, height):
         """The vertex stage: world positions and normals, clip space, screen positions."""
@@ -139,6 +140,12 @@ class Renderer:
                   lighting, self._colour.reshape(-1), self._depth.reshape(-1),
                   self._depth.shape[1], self._spans, self._planes)
 
+    def _downsample(self) -> None:
+        """Average the supersampled frame into the output buffer."""
+        _, width, ssaa = self._frame
+        raster.downsample(self._colour.reshape(-1), ssaa, self._output.reshape(-1), width,
+                          self._columns)
+
     def _draw_clipped(self, rasterize, triangles, attributes, lighting, width, height) -> None:
         """Draw the triangles that cross a clipping plane: clip them into a small mesh in
         screen space and rasterize that. Only frames with a vertex outside a clipping plane
@@ -166,6 +173,7 @@ class Renderer:
         self._colour = np.empty((height * ssaa, width * ssaa, 3), np.uint8)
         self._depth = np.empty((height * ssaa, width * ssaa), np.float32)
         self._output = np.empty((height, width, 3), np.uint8) if ssaa > 1 else None
+        self._columns = np.empty(3 * width * ssaa, np.int32)  # downsample's scratch
         self._spans = np.empty((2, height * ssaa), np.int64)  # the rasterizers' scratch
         self._frame = (height, width, ssaa)
 

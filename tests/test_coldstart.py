@@ -33,13 +33,13 @@ from engine.scene import Scene, SceneRenderer
 kernels = {name: kernel for name, kernel in vars(raster).items()
            if isinstance(kernel, CPUDispatcher)}
 added = {}
-for shading in ("gouraud", "phong", "overdraw"):
-    Renderer().prepare(shading)
+for shading, ssaa in (("gouraud", 1), ("phong", 1), ("overdraw", 1), ("gouraud", 2)):
+    Renderer().prepare(shading, ssaa)
     before = {name: set(kernel.signatures) for name, kernel in kernels.items()}
-    scene = Scene.of(load_config(sys.argv[1])).with_render(shading=shading)
+    scene = Scene.of(load_config(sys.argv[1])).with_render(shading=shading, ssaa=ssaa)
     SceneRenderer().render(scene, 64, 48)
-    added[shading] = sorted(name for name, kernel in kernels.items()
-                            if set(kernel.signatures) != before[name])
+    added[f"{shading} x{ssaa}"] = sorted(name for name, kernel in kernels.items()
+                                         if set(kernel.signatures) != before[name])
 print(json.dumps(added))
 """
 
@@ -48,7 +48,8 @@ def test_prepare_makes_the_very_kernels_a_frame_runs():
     process = subprocess.run([sys.executable, "-c", ADDED_BY_THE_FRAME, str(DEFAULT)],
                              capture_output=True, text=True, cwd=ROOT, timeout=300)
     assert process.returncode == 0, process.stderr
-    assert json.loads(process.stdout) == {"gouraud": [], "phong": [], "overdraw": []}
+    assert json.loads(process.stdout) == {"gouraud x1": [], "phong x1": [], "overdraw x1": [],
+                                          "gouraud x2": []}
 
 
 @pytest.mark.skipif(coldstart._cores() < 2, reason="the second process needs a second core")

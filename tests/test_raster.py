@@ -434,7 +434,7 @@ def test_downsample_averages_each_block_rounding_to_nearest():
     source[0, 2] = 255  # a quarter of the top-right one
     source[2:, :2, 1] = [[1, 2], [3, 4]]  # mean 2.5 rounds up to 3
     target = np.empty((2, 2, 3), np.uint8)
-    raster.downsample(source.reshape(-1), 2, target.reshape(-1), 2)
+    raster.downsample(source.reshape(-1), 2, target.reshape(-1), 2, np.empty(12, np.int32))
     np.testing.assert_array_equal(target[..., 0], [[255, 64], [0, 0]])
     assert target[1, 0, 1] == 3
 
