@@ -120,6 +120,8 @@ class HalfBlocks:
     def __init__(self) -> None:
         self._cells = np.zeros((0, 0), np.int64)
         self._previous = np.zeros((0, 0), np.int64)
+        self._starts = np.zeros((0, 0), np.int32)  # find_runs' output, kept for the size
+        self._counts = np.zeros(0, np.int32)
         self._strips: list[Strip] = []
         self._styles = _Styles()
 
@@ -133,8 +135,10 @@ class HalfBlocks:
         changed = np.ones(height, np.bool_)
         if self._previous.shape == self._cells.shape:
             mark_changed_rows(self._cells, self._previous, changed)
-        starts = np.empty((height, width), np.int32)
-        counts = np.empty(height, np.int32)
+        if self._starts.shape != (height, width):
+            self._starts = np.empty((height, width), np.int32)
+            self._counts = np.empty(height, np.int32)
+        starts, counts = self._starts, self._counts
         find_runs(self._cells, changed, starts, counts)
         if len(self._styles) > self.MAX_STYLES:
             self._styles.clear()
@@ -150,11 +154,12 @@ class HalfBlocks:
     def _strip(self, cells: np.ndarray, starts: np.ndarray) -> Strip:
         width = len(cells)
         styles = self._styles
-        ends = starts[1:].tolist() + [width]
+        first = starts.tolist()
+        ends = first[1:] + [width]
         return Strip(
             [
                 Segment(cell_text(cell, end - start), styles[cell])
-                for cell, start, end in zip(cells[starts].tolist(), starts.tolist(), ends)
+                for cell, start, end in zip(cells[starts].tolist(), first, ends)
             ],
             width,
         )
