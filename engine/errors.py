@@ -15,3 +15,8 @@ class ConfigError(BicepsError):
 
 class FileError(BicepsError):
     """A file cannot be written; whatever was there before is untouched."""
+
+
+def shown(text: str) -> str:
+    """What a person typed, as a message quotes it: ``'abc'``, or ``nothing``."""
+    return repr(text.strip()) if text.strip() else "nothing"

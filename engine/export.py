@@ -11,7 +11,7 @@ import numpy as np
 from PIL import Image
 
 from engine.arm import Arm
-from engine.errors import FileError
+from engine.errors import FileError, shown
 from engine.files import write_atomically
 from engine.scene import arm_parts
 
@@ -36,8 +36,7 @@ def parse_size(text: str) -> tuple[int, int]:
     """
     match = _SIZE.match(text)
     if match is None:
-        shown = repr(text.strip()) if text.strip() else "nothing"
-        raise ValueError(f"{shown} is not a size: write it as 1920x1080")
+        raise ValueError(f"{shown(text)} is not a size: write it as 1920x1080")
     width, height = int(match[1]), int(match[2])
     for side in (width, height):
         if not 1 <= side <= LARGEST_SIDE:

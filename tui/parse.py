@@ -8,15 +8,17 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from engine.errors import shown
+
 
 def parse_number(text: str) -> float:
     """A finite decimal number: ``2``, ``0.35``, ``1e-1``."""
     try:
         value = float(text)
     except ValueError:
-        raise ValueError(f"{_shown(text)} is not a number") from None
+        raise ValueError(f"{shown(text)} is not a number") from None
     if not math.isfinite(value):
-        raise ValueError(f"{_shown(text)} is not a finite number")
+        raise ValueError(f"{shown(text)} is not a finite number")
     return value
 
 
@@ -29,7 +31,3 @@ def parse_path(text: str) -> Path:
     if path.is_dir():
         raise ValueError(f"{path} is a directory: give a file name")
     return path
-
-
-def _shown(text: str) -> str:
-    return repr(text.strip()) if text.strip() else "nothing"
