@@ -218,7 +218,7 @@ class Muscle:
         """(n,) float64: each node's distance (cm) from the muscle's origin."""
         return np.linspace(0.0, self.length, self.node_count)
 
-    @property
+    @cached_property
     def volume(self) -> float:
         """The volume (cm^3) of the current shape, computed directly from its radii."""
         return volume(self.radii, self.length, self.volume_mode)
