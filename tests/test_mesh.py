@@ -30,6 +30,8 @@ directions = (
     .map(lambda v: v / np.linalg.norm(v))
 )
 lengths = st.floats(0.5, 50.0)
+# A random profile, placed from a random start along a random axis: @given(**placed, ...).
+placed = {"radii": radii_lists, "start": points, "axis": directions, "length": lengths}
 slow = settings(deadline=None)
 
 
@@ -57,10 +59,7 @@ def axial_and_radial(mesh: Mesh, start, axis):
 
 @slow
 @given(
-    radii=radii_lists,
-    start=points,
-    axis=directions,
-    length=lengths,
+    **placed,
     segments=st.integers(3, 40),
     caps=st.sampled_from(["round", "flat"]),
     cap_rings=st.none() | st.integers(1, 8),
@@ -78,9 +77,7 @@ def test_muscle_is_one_closed_outward_surface(
 
 
 @slow
-@given(
-    radii=radii_lists, start=points, axis=directions, length=lengths, segments=st.integers(3, 64)
-)
+@given(**placed, segments=st.integers(3, 64))
 def test_flat_capped_volume_is_the_frusta_volume_of_the_polygon(
     radii, start, axis, length, segments
 ):
@@ -105,7 +102,7 @@ def test_round_capped_reference_muscle_holds_the_closed_volume_within_one_percen
 
 
 @slow
-@given(radii=radii_lists, start=points, axis=directions, length=lengths)
+@given(**placed)
 def test_round_capped_volume_is_within_one_percent_at_the_default_segments(
     radii, start, axis, length
 ):
@@ -125,13 +122,7 @@ def test_triangle_count_is_two_per_segment_per_ring():
 
 
 @slow
-@given(
-    radii=radii_lists,
-    start=points,
-    axis=directions,
-    length=lengths,
-    caps=st.sampled_from(["round", "flat"]),
-)
+@given(**placed, caps=st.sampled_from(["round", "flat"]))
 def test_normals_are_unit_and_point_away_from_the_axis(radii, start, axis, length, caps):
     mesh = muscle_mesh(radii, length, start, start + length * axis, 24, caps)
     np.testing.assert_allclose(np.linalg.norm(mesh.normals, axis=1), 1.0, atol=1e-12)
