@@ -12,7 +12,7 @@ import time
 
 import numpy as np
 
-from engine.muscle import Muscle
+from biceps.engine.muscle import Muscle
 
 RUNS = 7
 CHANGES_PER_RUN = 2000

@@ -24,10 +24,10 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from engine.mesh import Mesh, arm_meshes  # noqa: E402
-from engine.render import Renderer, clear  # noqa: E402
-from engine.skeleton import Skeleton  # noqa: E402
-from engine.transforms import Light, frame_camera, model_matrix, transform_points  # noqa: E402
+from biceps.engine.mesh import Mesh, arm_meshes  # noqa: E402
+from biceps.engine.render import Renderer, clear  # noqa: E402
+from biceps.engine.skeleton import Skeleton  # noqa: E402
+from biceps.engine.transforms import Light, frame_camera, model_matrix, transform_points  # noqa: E402
 
 SIZES = [(200, 120), (640, 360), (1920, 1080), (3840, 2160)]
 TRIANGLES = [5_000, 20_000, 100_000]

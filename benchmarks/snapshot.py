@@ -37,7 +37,7 @@ def main() -> None:
     python = sys.executable
     with tempfile.TemporaryDirectory() as scratch:
         output = str(Path(scratch) / "arm.png")
-        snapshot = [python, "-m", "engine.cli", "snapshot", str(CONFIG), "-o", output,
+        snapshot = [python, "-m", "biceps.cli", "snapshot", str(CONFIG), "-o", output,
                     "--size", "1920x1080"]
         warm_cache = Path(scratch) / "warm"
         base = dict(os.environ)

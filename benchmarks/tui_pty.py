@@ -45,7 +45,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from tui.changes import TURN_STEP  # degrees per press of the right arrow
+from biceps.tui.changes import TURN_STEP  # degrees per press of the right arrow
 
 ROOT = Path(__file__).resolve().parent.parent
 CONFIG = ROOT / "configs" / "biceps.toml"
@@ -311,7 +311,7 @@ def started(argv: list[str], columns: int, rows: int) -> Terminal:
 
 
 def biceps_argv() -> list[str]:
-    return [sys.executable, "-m", "engine.cli", "app", str(CONFIG)]
+    return [sys.executable, "-m", "biceps.cli", "app", str(CONFIG)]
 
 
 def baseline_argv() -> list[str]:
@@ -327,9 +327,9 @@ def run_rich_pixels_app() -> None:
     from textual.app import App, ComposeResult
     from textual.widgets import Static
 
-    from engine.config import load_config
-    from engine.scene import Scene, SceneRenderer
-    from tui.changes import turned
+    from biceps.engine.config import load_config
+    from biceps.engine.scene import Scene, SceneRenderer
+    from biceps.tui.changes import turned
 
     class RichPixelsApp(App[None]):
         CSS = "Static { height: 1fr; }"

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from engine.errors import RefusedChange
-from engine.muscle import Muscle
-from engine.skeleton import ArmPose, Skeleton
+from biceps.engine.errors import RefusedChange
+from biceps.engine.muscle import Muscle
+from biceps.engine.skeleton import ArmPose, Skeleton
 
 
 @dataclass(frozen=True)

@@ -27,7 +27,7 @@ from typing import Callable
 
 from numba.core import event
 
-from engine.render import Renderer
+from biceps.engine.render import Renderer
 
 
 class Aside:

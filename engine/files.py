@@ -6,7 +6,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from engine.errors import FileError
+from biceps.engine.errors import FileError
 
 
 def write_atomically(path: str | os.PathLike, data: bytes) -> None:

@@ -22,7 +22,7 @@ from typing import Literal
 
 import numpy as np
 
-from engine.errors import RefusedChange
+from biceps.engine.errors import RefusedChange
 
 VolumeMode = Literal["closed", "frusta"]
 VOLUME_MODES: tuple[VolumeMode, ...] = ("closed", "frusta")

@@ -52,7 +52,7 @@ import math
 
 import numpy as np
 
-from engine.jit import helper, inline, ngjit
+from biceps.engine.jit import helper, inline, ngjit
 
 SUBPIXEL_BITS = 8
 ONE = 1 << SUBPIXEL_BITS  # one pixel in fixed point

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine import raster
-from engine.transforms import Camera, Light, normal_matrix
+from biceps.engine import raster
+from biceps.engine.transforms import Camera, Light, normal_matrix
 
 RASTERIZERS = {
     "gouraud": raster.rasterize_gouraud,

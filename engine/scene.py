@@ -12,12 +12,12 @@ from functools import lru_cache
 
 import numpy as np
 
-from engine.arm import Arm
-from engine.config import Config, LightTable, RenderTable, ViewTable, rgb
-from engine.mesh import Mesh, arm_meshes
-from engine.render import Renderer
-from engine.skeleton import Skeleton
-from engine.transforms import Camera, frame_sphere, model_matrix
+from biceps.engine.arm import Arm
+from biceps.engine.config import Config, LightTable, RenderTable, ViewTable, rgb
+from biceps.engine.mesh import Mesh, arm_meshes
+from biceps.engine.render import Renderer
+from biceps.engine.skeleton import Skeleton
+from biceps.engine.transforms import Camera, frame_sphere, model_matrix
 
 
 @dataclass(frozen=True)

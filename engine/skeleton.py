@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from engine.errors import RefusedChange
+from biceps.engine.errors import RefusedChange
 
 
 @dataclass(frozen=True)

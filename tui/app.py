@@ -24,12 +24,12 @@ from textual.notifications import SeverityLevel
 from textual.reactive import var
 from textual.screen import Screen
 
-from engine import coldstart
-from engine.config import Config, load_config, save_config
-from engine.errors import BicepsError
-from engine.export import check_writable, parse_size, write_png
-from engine.scene import Scene, SceneRenderer
-from tui.changes import (
+from biceps.engine import coldstart
+from biceps.engine.config import Config, load_config, save_config
+from biceps.engine.errors import BicepsError
+from biceps.engine.export import check_writable, parse_size, write_png
+from biceps.engine.scene import Scene, SceneRenderer
+from biceps.tui.changes import (
     COARSE_STEP,
     FINE_STEP,
     LIGHT_STEP,
@@ -44,18 +44,18 @@ from tui.changes import (
     with_shading_switched,
     zoomed,
 )
-from tui.commands import KeyCommands
-from tui.halfblocks import HalfBlocks
-from tui.pacing import Pacer, cursor_question
-from tui.parse import parse_path
-from tui.screens.choice import Answer, Choice
-from tui.screens.help import HelpScreen
-from tui.screens.main import MainScreen
-from tui.screens.prompt import Field, Prompt
-from tui.sgr import lean
-from tui.suggest import PathSuggester
-from tui.widgets.node_table import NodeTable
-from tui.widgets.viewport import Viewport
+from biceps.tui.commands import KeyCommands
+from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.pacing import Pacer, cursor_question
+from biceps.tui.parse import parse_path
+from biceps.tui.screens.choice import Answer, Choice
+from biceps.tui.screens.help import HelpScreen
+from biceps.tui.screens.main import MainScreen
+from biceps.tui.screens.prompt import Field, Prompt
+from biceps.tui.sgr import lean
+from biceps.tui.suggest import PathSuggester
+from biceps.tui.widgets.node_table import NodeTable
+from biceps.tui.widgets.viewport import Viewport
 
 # A drag across the picture's full height turns the model half round, or moves it by about
 # the height of the arm in view at scale 1.

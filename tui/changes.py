@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.arm import Arm
-from engine.errors import RefusedChange
-from engine.muscle import Muscle
-from engine.scene import Scene
+from biceps.engine.arm import Arm
+from biceps.engine.errors import RefusedChange
+from biceps.engine.muscle import Muscle
+from biceps.engine.scene import Scene
 
 TURN_STEP = 5.0  # degrees per key press
 MOVE_STEP = 2.0  # cm per key press

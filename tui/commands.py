@@ -13,7 +13,7 @@ from textual.binding import Binding
 from textual.command import DiscoveryHit, Hit, Hits, Provider
 from textual.dom import DOMNode
 
-from tui.widgets.node_table import NodeTable
+from biceps.tui.widgets.node_table import NodeTable
 
 
 class KeyCommands(Provider):

@@ -22,7 +22,7 @@ from rich.segment import Segment
 from rich.style import Style
 from textual.strip import Strip
 
-from engine.jit import ngjit
+from biceps.engine.jit import ngjit
 
 UPPER_HALF = "▀"
 BOTTOM = (1 << 24) - 1  # a cell's bottom pixel, as packed below

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from engine.errors import shown
+from biceps.engine.errors import shown
 
 
 def parse_number(text: str) -> float:

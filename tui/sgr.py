@@ -23,7 +23,7 @@ import numpy as np
 from textual.driver import Driver
 from textual.strip import SGR_STYLES
 
-from engine.jit import helper, ngjit
+from biceps.engine.jit import helper, ngjit
 
 ESC, BEL = 0x1B, 0x07
 

@@ -10,7 +10,7 @@ from textual.containers import VerticalScroll
 from textual.screen import ModalScreen
 from textual.widgets import Markdown
 
-HELP = files("tui").joinpath("help.md").read_text(encoding="utf-8")
+HELP = files("biceps.tui").joinpath("help.md").read_text(encoding="utf-8")
 
 
 class HelpScreen(ModalScreen[None]):

@@ -8,13 +8,13 @@ from textual.events import Resize
 from textual.screen import Screen
 from textual.widgets import Footer, Static
 
-from engine.arm import Arm
-from engine.coldstart import Aside
-from engine.scene import Scene
-from tui.pacing import Pacer
-from tui.widgets.node_table import NodeTable
-from tui.widgets.stats import Stats
-from tui.widgets.viewport import Viewport
+from biceps.engine.arm import Arm
+from biceps.engine.coldstart import Aside
+from biceps.engine.scene import Scene
+from biceps.tui.pacing import Pacer
+from biceps.tui.widgets.node_table import NodeTable
+from biceps.tui.widgets.stats import Stats
+from biceps.tui.widgets.viewport import Viewport
 
 # Below this the side panel leaves the picture a sliver and the table a few rows.
 SMALLEST_USEFUL = (60, 16)

@@ -17,7 +17,7 @@ from textual.screen import ModalScreen
 from textual.suggester import Suggester
 from textual.widgets import Button, Input, Label
 
-from engine.errors import BicepsError
+from biceps.engine.errors import BicepsError
 
 T = TypeVar("T")
 

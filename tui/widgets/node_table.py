@@ -10,10 +10,10 @@ from textual.coordinate import Coordinate
 from textual.message import Message
 from textual.widgets import DataTable
 
-from engine.muscle import Muscle
-from tui.changes import with_node
-from tui.parse import parse_number
-from tui.screens.prompt import Field, Prompt
+from biceps.engine.muscle import Muscle
+from biceps.tui.changes import with_node
+from biceps.tui.parse import parse_number
+from biceps.tui.screens.prompt import Field, Prompt
 
 COLUMNS = ("#", "at cm", "r cm", "growth")
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from rich.table import Table
 from textual.widgets import Static
 
-from engine.arm import Arm
+from biceps.engine.arm import Arm
 
 
 class Stats(Static):

@@ -27,12 +27,12 @@ from textual.message import Message
 from textual.strip import Strip
 from textual.widget import Widget
 
-from engine.coldstart import Aside
-from engine.config import rgb
-from engine.scene import Scene, SceneRenderer
-from tui.halfblocks import HalfBlocks, Lines
-from tui.latest_only import LatestOnly
-from tui.pacing import Pacer
+from biceps.engine.coldstart import Aside
+from biceps.engine.config import rgb
+from biceps.engine.scene import Scene, SceneRenderer
+from biceps.tui.halfblocks import HalfBlocks, Lines
+from biceps.tui.latest_only import LatestOnly
+from biceps.tui.pacing import Pacer
 
 
 DRAW_TRIES = 8  # refreshes to wait for a frame to be written before pacing on regardless

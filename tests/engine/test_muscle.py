@@ -5,8 +5,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine.errors import RefusedChange
-from engine.muscle import Muscle, frusta_sum, volume
+from biceps.engine.errors import RefusedChange
+from biceps.engine.muscle import Muscle, frusta_sum, volume
 
 # SPEC section 5.
 SPEC_RADII = [0.5, 0.6, 0.8, 1.2, 1.7, 2.1, 2.35, 2.4, 2.3, 2.0, 1.6, 1.1, 0.7, 0.5, 0.45]

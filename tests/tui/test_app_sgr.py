@@ -11,8 +11,8 @@ from rich.segment import Segment
 from rich.style import Style
 from textual.strip import Strip
 
-from tui.halfblocks import HalfBlocks
-from tui.sgr import minimized
+from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.sgr import minimized
 from vt import Screen
 
 RED_ON_BLUE = "\x1b[38;2;255;0;0;48;2;0;0;255m"

@@ -5,11 +5,11 @@ from pathlib import Path
 import pytest
 from textual.widgets import Input
 
-from engine.config import load_config
-from tui.screens.prompt import Prompt
-from tui.widgets.node_table import NodeTable
+from biceps.engine.config import load_config
+from biceps.tui.screens.prompt import Prompt
+from biceps.tui.widgets.node_table import NodeTable
+from biceps.engine.config import BUNDLED
 
-CONFIGS = Path(__file__).resolve().parent.parent / "configs"
 
 
 async def _edit(session, node: int, radius: str | None = None, growth: str | None = None):
@@ -123,7 +123,7 @@ async def test_the_picked_node_is_deleted(biceps, key):
 
 
 async def test_the_last_two_nodes_stay(biceps):
-    async with biceps(on=load_config(CONFIGS / "toy.toml")) as session:
+    async with biceps(on=load_config(BUNDLED / "toy.toml")) as session:
         await session.pilot.press("tab", "backspace", "backspace", "backspace")
         assert session.app.scene.arm.muscle.node_count == 2
         assert any("at least 2 nodes" in warning for warning in session.warnings)

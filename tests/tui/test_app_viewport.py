@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from tui.widgets.viewport import Viewport
+from biceps.tui.widgets.viewport import Viewport
 
 
 @pytest.fixture

@@ -14,9 +14,9 @@ import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine import raster
-from engine.render import Renderer
-from engine.transforms import Camera, Light, model_matrix, transform_points, viewport
+from biceps.engine import raster
+from biceps.engine.render import Renderer
+from biceps.engine.transforms import Camera, Light, model_matrix, transform_points, viewport
 
 def reference_coverage(triangle, width, height):
     """The pixels (x, y) whose centres the top-left rule puts inside ``triangle``, three

@@ -6,13 +6,13 @@ import numpy as np
 from PIL import Image
 from textual.widgets import Input
 
-from engine.config import load_config
-from tui.screens.choice import Choice
-from tui.screens.prompt import Prompt
-from tui.widgets.node_table import NodeTable
+from biceps.engine.config import load_config
+from biceps.tui.screens.choice import Choice
+from biceps.tui.screens.prompt import Prompt
+from biceps.tui.widgets.node_table import NodeTable
+from biceps.engine.config import BUNDLED
 
-CONFIGS = Path(__file__).resolve().parent.parent / "configs"
-BROKEN = Path(__file__).resolve().parent / "invalid_configs" / "broken_toml.toml"
+BROKEN = Path(__file__).resolve().parents[1] / "invalid_configs" / "broken_toml.toml"
 
 
 async def _answer(session, *values: str) -> None:
@@ -88,7 +88,7 @@ async def test_a_directory_is_not_a_file_name(biceps, tmp_path):
 async def test_opening_another_configuration_shows_it(biceps):
     async with biceps() as session:
         await session.pilot.press("ctrl+o")
-        await _answer(session, str(CONFIGS / "toy.toml"))
+        await _answer(session, str(BUNDLED / "toy.toml"))
         assert session.app.scene.arm.muscle.node_count == 4
         assert session.app.sub_title == "toy.toml"
         assert not session.app.unsaved
@@ -107,12 +107,12 @@ async def test_a_broken_file_is_not_opened_and_the_model_stays(biceps):
 async def test_opening_over_unsaved_edits_asks_first(biceps):
     async with biceps() as session:
         await session.pilot.press("c", "ctrl+o")
-        await _answer(session, str(CONFIGS / "toy.toml"))
+        await _answer(session, str(BUNDLED / "toy.toml"))
         assert isinstance(session.app.screen, Choice)
         await session.pilot.press("escape")
         assert session.app.scene.arm.length == 32.9
         await session.pilot.press("ctrl+o")
-        await _answer(session, str(CONFIGS / "toy.toml"))
+        await _answer(session, str(BUNDLED / "toy.toml"))
         await session.pilot.press("d")
         assert session.app.scene.arm.muscle.node_count == 4
 

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from engine.transforms import (
+from biceps.engine.transforms import (
     Camera,
     frame_camera,
     frame_sphere,

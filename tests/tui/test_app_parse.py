@@ -4,9 +4,9 @@ from pathlib import Path
 
 import pytest
 
-from engine.export import parse_size
-from tui.parse import parse_number, parse_path
-from tui.suggest import PathSuggester
+from biceps.engine.export import parse_size
+from biceps.tui.parse import parse_number, parse_path
+from biceps.tui.suggest import PathSuggester
 
 
 @pytest.mark.parametrize("text, value", [("2", 2.0), (" 0.35 ", 0.35), ("1e-1", 0.1), ("-3", -3.0)])

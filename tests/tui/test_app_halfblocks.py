@@ -8,7 +8,7 @@ from rich.color import Color
 from rich.console import Console
 from textual.strip import Strip
 
-from tui.halfblocks import UPPER_HALF, HalfBlocks
+from biceps.tui.halfblocks import UPPER_HALF, HalfBlocks
 
 
 def frame_to_strips(frame: np.ndarray) -> list[Strip]:

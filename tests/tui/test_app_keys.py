@@ -3,8 +3,8 @@
 import pytest
 from textual import events
 
-from tui.app import BicepsApp
-from tui.widgets.viewport import Viewport
+from biceps.tui.app import BicepsApp
+from biceps.tui.widgets.viewport import Viewport
 
 # The bundled model starts at yaw -25, pitch 10, roll 0, scale 1, offset 0, light
 # (60, 80, 120), length 33 cm, Gouraud shading without anti-aliasing.

@@ -16,11 +16,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from engine.config import load_config
-from engine.scene import Scene, SceneRenderer
+from biceps.engine.config import load_config
+from biceps.engine.scene import Scene, SceneRenderer
 from vt import Screen
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 UPPER_HALF = "▀".encode()
 
 
@@ -34,7 +34,7 @@ def _first_picture(config: Path, *options: str, timeout: float = 120.0,
                    if not key.startswith("TEXTUAL")}
     environment.update(TERM="xterm-256color", COLORTERM="truecolor", **variables)
     process = subprocess.Popen(
-        [sys.executable, "-m", "engine.cli", "app", str(config), *options],
+        [sys.executable, "-m", "biceps.cli", "app", str(config), *options],
         stdin=slave, stdout=slave, stderr=slave, env=environment, cwd=ROOT,
         start_new_session=True,
     )  # fmt: skip

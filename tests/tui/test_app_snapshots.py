@@ -1,13 +1,13 @@
 """What the screens look like, compared with the accepted SVG snapshots.
 
 Update them with ``pytest tests/test_app_snapshots.py --snapshot-update`` and look at the
-result (``tests/__snapshots__``) before accepting it.
+result (``tests/tui/__snapshots__``) before accepting it.
 """
 
 from textual.pilot import Pilot
 
-from tui.app import BicepsApp
-from tui.widgets.viewport import Viewport
+from biceps.tui.app import BicepsApp
+from biceps.tui.widgets.viewport import Viewport
 
 
 async def _picture_drawn(pilot: Pilot) -> None:

@@ -6,11 +6,11 @@ import pytest
 from click.testing import CliRunner
 from textual import events
 
-import tui.pacing
-from engine.cli import main
-from tui.app import BicepsApp
-from tui.pacing import Pacer, cursor_question
-from tui.widgets.viewport import Viewport
+import biceps.tui.pacing
+from biceps.cli import main
+from biceps.tui.app import BicepsApp
+from biceps.tui.pacing import Pacer, cursor_question
+from biceps.tui.widgets.viewport import Viewport
 
 
 class Timers:
@@ -86,7 +86,7 @@ def test_an_answer_after_giving_up_does_not_release_the_next_frame(timers):
     pacer.answered(asked[-1], 0)  # the terminal answers...
     released = []
     pacer.after_frame(lambda: released.append("late"))
-    assert timers.fire() == [tui.pacing.ANSWER]  # ...but not this time, for long
+    assert timers.fire() == [biceps.tui.pacing.ANSWER]  # ...but not this time, for long
     assert released == ["late"]
     pacer.after_frame(lambda: released.append("next"))
     pacer.answered(asked[-2], 0)  # the answer to the question given up on
@@ -100,9 +100,9 @@ def test_a_terminal_that_misses_an_answer_has_a_second_for_the_next(timers):
     pacer.after_frame(lambda: None)
     pacer.answered(asked[-1], 0)
     pacer.after_frame(lambda: None)
-    assert timers.fire() == [tui.pacing.ANSWER]
+    assert timers.fire() == [biceps.tui.pacing.ANSWER]
     pacer.after_frame(lambda: None)
-    assert timers.fire() == [tui.pacing.FIRST_ANSWER]
+    assert timers.fire() == [biceps.tui.pacing.FIRST_ANSWER]
     assert pacer.answers is False
 
 
@@ -124,7 +124,7 @@ def test_a_terminal_that_never_answers_gets_a_second_then_frames_follow_at_once(
     pacer, asked = _pacer(timers)
     released = []
     pacer.after_frame(lambda: released.append(1))
-    assert timers.fire() == [tui.pacing.FIRST_ANSWER]
+    assert timers.fire() == [biceps.tui.pacing.FIRST_ANSWER]
     assert released == [1] and pacer.answers is False
     pacer.after_frame(lambda: released.append(2))
     assert released == [1, 2]
@@ -231,7 +231,7 @@ async def test_no_frame_is_made_until_the_terminal_has_taken_the_last(config):
 
 
 async def test_a_terminal_that_never_answers_still_gets_every_frame(config, monkeypatch):
-    monkeypatch.setattr(tui.pacing, "FIRST_ANSWER", 0.05)
+    monkeypatch.setattr(biceps.tui.pacing, "FIRST_ANSWER", 0.05)
     app = BicepsApp(config)
     terminal = Terminal(app)
     async with app.run_test(size=(100, 30)) as pilot:
@@ -252,7 +252,7 @@ async def test_the_app_takes_a_frame_rate_cap(config):
 
 def test_the_command_line_passes_the_cap_to_the_app(monkeypatch):
     runs = []
-    monkeypatch.setattr("tui.app.run_app", lambda config, **options: runs.append(options))
+    monkeypatch.setattr("biceps.tui.app.run_app", lambda config, **options: runs.append(options))
     result = CliRunner().invoke(main, ["app", "--fps", "30"])
     assert result.exit_code == 0, result.output
     # Not the command's own process (a test's): nothing is forked.

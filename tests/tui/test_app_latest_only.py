@@ -2,7 +2,7 @@
 
 import threading
 
-from tui.latest_only import LatestOnly
+from biceps.tui.latest_only import LatestOnly
 
 
 def test_a_new_item_replaces_one_not_yet_taken():

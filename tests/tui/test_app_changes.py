@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from engine.errors import RefusedChange
-from engine.scene import Scene
-from tui.changes import (
+from biceps.engine.errors import RefusedChange
+from biceps.engine.scene import Scene
+from biceps.tui.changes import (
     LARGEST_SCALE,
     SMALLEST_SCALE,
     differs_from_saved,

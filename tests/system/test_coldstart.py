@@ -13,22 +13,21 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from engine import coldstart
-from engine.config import load_config
-from engine.scene import Scene, SceneRenderer
+from biceps.engine import coldstart
+from biceps.engine.config import DEFAULT_CONFIG, load_config
+from biceps.engine.scene import Scene, SceneRenderer
 
-ROOT = Path(__file__).resolve().parent.parent
-DEFAULT = ROOT / "configs" / "biceps.toml"
+ROOT = Path(__file__).resolve().parents[2]
 
 # In a fresh interpreter, so that no kernel has a version from elsewhere: prepare, then
 # render, and print the versions the frame had to add (none, if prepare made the right ones).
 ADDED_BY_THE_FRAME = """
 import json, sys
 from numba.core.registry import CPUDispatcher
-from engine import raster
-from engine.config import load_config
-from engine.render import Renderer
-from engine.scene import Scene, SceneRenderer
+from biceps.engine import raster
+from biceps.engine.config import load_config
+from biceps.engine.render import Renderer
+from biceps.engine.scene import Scene, SceneRenderer
 
 kernels = {name: kernel for name, kernel in vars(raster).items()
            if isinstance(kernel, CPUDispatcher)}
@@ -45,7 +44,7 @@ print(json.dumps(added))
 
 
 def test_prepare_makes_the_very_kernels_a_frame_runs():
-    process = subprocess.run([sys.executable, "-c", ADDED_BY_THE_FRAME, str(DEFAULT)],
+    process = subprocess.run([sys.executable, "-c", ADDED_BY_THE_FRAME, str(DEFAULT_CONFIG)],
                              capture_output=True, text=True, cwd=ROOT, timeout=300)
     assert process.returncode == 0, process.stderr
     assert json.loads(process.stdout) == {"gouraud x1": [], "phong x1": [], "overdraw x1": [],
@@ -58,7 +57,7 @@ def test_on_a_cold_cache_the_rasterizer_comes_from_the_second_process(tmp_path):
     environment = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache"),
                    "NUMBA_DEBUG_CACHE": "1"}
     process = subprocess.run(
-        [sys.executable, "-m", "engine.cli", "snapshot", str(DEFAULT), "-o", str(out),
+        [sys.executable, "-m", "biceps.cli", "snapshot", str(DEFAULT_CONFIG), "-o", str(out),
          "--size", "96x54"],
         capture_output=True, text=True, cwd=ROOT, env=environment, timeout=300,
     )  # fmt: skip
@@ -68,7 +67,7 @@ def test_on_a_cold_cache_the_rasterizer_comes_from_the_second_process(tmp_path):
     log = process.stdout.splitlines()
     assert any("data saved" in line and "rasterize_gouraud" in line for line in log)
     assert any("data loaded" in line and "rasterize_gouraud" in line for line in log)
-    expected = SceneRenderer().render(Scene.of(load_config(DEFAULT)), 96, 54)
+    expected = SceneRenderer().render(Scene.of(load_config(DEFAULT_CONFIG)), 96, 54)
     np.testing.assert_array_equal(np.asarray(Image.open(out)), expected)
 
 
@@ -91,7 +90,7 @@ def test_there_is_no_fork_beside_another_thread(monkeypatch):
 # another thread, must end it and leave no child behind.
 HANGING_CHILD = """
 import os, sys, threading, time
-from engine.coldstart import compile_aside
+from biceps.engine.coldstart import compile_aside
 
 def no_child_left():
     try:

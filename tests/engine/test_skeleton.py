@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
-from engine.arm import Arm
-from engine.errors import RefusedChange
-from engine.muscle import Muscle
-from engine.skeleton import Skeleton, check_skeleton
+from biceps.engine.arm import Arm
+from biceps.engine.errors import RefusedChange
+from biceps.engine.muscle import Muscle
+from biceps.engine.skeleton import Skeleton, check_skeleton
 
 ARM26 = Skeleton()
 

@@ -1,7 +1,7 @@
 """Golden images: the default model at three poses, compared as decoded pixels.
 
 Regenerate after an intended change of the picture, then look at every image:
-    BICEPS_UPDATE_GOLDEN=1 .venv/bin/pytest tests/test_golden.py
+    BICEPS_UPDATE_GOLDEN=1 .venv/bin/pytest tests/engine/test_golden.py
 """
 
 import os
@@ -11,12 +11,12 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from engine.config import load_config
-from engine.export import write_png
-from engine.scene import Scene, SceneRenderer
+from biceps.engine.config import load_config
+from biceps.engine.export import write_png
+from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.config import DEFAULT_CONFIG
 
 GOLDEN = Path(__file__).resolve().parent / "golden"
-DEFAULT = Path(__file__).resolve().parent.parent / "configs" / "biceps.toml"
 SIZE = (320, 180)
 
 
@@ -39,7 +39,7 @@ POSES = [default_view, flexed_phong, straight_from_the_left]
 
 @pytest.mark.parametrize("pose", POSES, ids=lambda pose: pose.__name__)
 def test_picture_matches_its_golden_image(pose):
-    scene = pose(Scene.of(load_config(DEFAULT)))
+    scene = pose(Scene.of(load_config(DEFAULT_CONFIG)))
     picture = SceneRenderer().render(scene, *SIZE)
     path = GOLDEN / f"{pose.__name__}.png"
     if os.environ.get("BICEPS_UPDATE_GOLDEN"):

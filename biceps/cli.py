@@ -20,12 +20,12 @@ from typing import Any, Callable
 
 import click
 
-from engine.arm import Arm
-from engine.coldstart import prepare_kernels
-from engine.config import DEFAULT_CONFIG, load_config
-from engine.errors import BicepsError
-from engine.export import MESH_FORMATS, check_writable, parse_size, write_mesh, write_png
-from engine.scene import Scene, SceneRenderer
+from biceps.engine.arm import Arm
+from biceps.engine.coldstart import prepare_kernels
+from biceps.engine.config import DEFAULT_CONFIG, load_config
+from biceps.engine.errors import BicepsError
+from biceps.engine.export import MESH_FORMATS, check_writable, parse_size, write_mesh, write_png
+from biceps.engine.scene import Scene, SceneRenderer
 
 
 
@@ -129,7 +129,7 @@ def main() -> None:
 def app(config: Path, colors: str, fps: int | None) -> None:
     """Open the terminal app on CONFIG (default: configs/biceps.toml)."""
     loaded = load_config(config)  # fail here, before the terminal switches screens
-    from tui.app import run_app
+    from biceps.tui.app import run_app
 
     run_app(loaded, colors=colors, fps=fps, compile_aside=_own_process())
 
@@ -250,7 +250,7 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: boo
     if _own_process():
         prepare_kernels(scene.render.shading, scene.render.ssaa)  # forks: see coldstart
     if ansi:
-        from tui.ansi import print_picture  # rich, only for this mode
+        from biceps.tui.ansi import print_picture  # rich, only for this mode
 
         print_picture(lambda width, height: SceneRenderer().render(scene, width, height))
         return

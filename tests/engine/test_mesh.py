@@ -6,7 +6,7 @@ import trimesh
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from engine.mesh import (
+from biceps.engine.mesh import (
     DEFAULT_SEGMENTS,
     Mesh,
     arm_meshes,

@@ -7,13 +7,13 @@ from textual.binding import Binding
 from textual.command import CommandList
 from textual.widgets import Static
 
-from engine.scene import SceneRenderer
-from tui.app import BicepsApp
-from tui.commands import KeyCommands
-from tui.screens.help import HelpScreen
-from tui.screens.main import MainScreen
-from tui.widgets.node_table import NodeTable
-from tui.widgets.viewport import Viewport
+from biceps.engine.scene import SceneRenderer
+from biceps.tui.app import BicepsApp
+from biceps.tui.commands import KeyCommands
+from biceps.tui.screens.help import HelpScreen
+from biceps.tui.screens.main import MainScreen
+from biceps.tui.widgets.node_table import NodeTable
+from biceps.tui.widgets.viewport import Viewport
 
 
 @pytest.fixture
@@ -26,7 +26,7 @@ def render_sizes(monkeypatch) -> list[tuple[int, int]]:
             sizes.append((width, height))
             return super().render(scene, width, height)
 
-    monkeypatch.setattr("tui.widgets.viewport.SceneRenderer", RecordingRenderer)
+    monkeypatch.setattr("biceps.tui.widgets.viewport.SceneRenderer", RecordingRenderer)
     return sizes
 
 
@@ -81,7 +81,7 @@ WRITTEN = {
 
 
 def test_the_help_lists_every_key():
-    help_text = files("tui").joinpath("help.md").read_text()
+    help_text = files("biceps.tui").joinpath("help.md").read_text()
     for binding in _bindings():
         written = WRITTEN.get(binding.key, binding.key)
         assert f"`{written}`" in help_text, f"{binding.key} is not in help.md"

@@ -1,0 +1,67 @@
+"""The app driven by a pilot."""
+
+from __future__ import annotations
+
+from contextlib import asynccontextmanager
+from dataclasses import dataclass, field
+from typing import AsyncIterator
+
+import pytest
+from textual.notifications import Notification, Notify
+from textual.pilot import Pilot
+
+from biceps.engine.config import Config
+from biceps.tui.app import BicepsApp
+from biceps.tui.widgets.viewport import Viewport
+
+
+@dataclass
+class Session:
+    """A running app, the pilot driving it and every notification it has shown."""
+
+    app: BicepsApp
+    pilot: Pilot
+    notes: list[Notification] = field(default_factory=list)
+
+    @property
+    def warnings(self) -> list[str]:
+        return [note.message for note in self.notes if note.severity != "information"]
+
+    async def settle(self) -> None:
+        """Wait until the picture shows the latest scene and every export is written."""
+        app, pilot = self.app, self.pilot
+        await pilot.pause()
+        exports = [worker for worker in app.workers if worker.group == "export"]
+        if exports:  # an empty list would mean every worker, the render loop among them
+            await app.workers.wait_for_complete(exports)
+        viewport = app.screen_stack[0].query_one(Viewport)
+        for _ in range(1000):
+            if viewport.up_to_date:
+                break
+            await pilot.pause(0.01)
+        else:
+            raise AssertionError("the picture never caught up with the scene")
+        await pilot.pause()
+
+
+@pytest.fixture
+def biceps(config: Config):
+    """Start the app on ``config``: ``async with biceps() as session: ...``."""
+
+    @asynccontextmanager
+    async def start(
+        size: tuple[int, int] = (100, 30), on: Config = config
+    ) -> AsyncIterator[Session]:
+        app = BicepsApp(on)
+        notes: list[Notification] = []
+
+        def record(message: object) -> None:
+            if isinstance(message, Notify):
+                notes.append(message.notification)
+
+        async with app.run_test(size=size, message_hook=record) as pilot:
+            session = Session(app, pilot, notes)
+            await session.settle()
+            yield session
+
+    return start
