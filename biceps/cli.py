@@ -1,8 +1,9 @@
 """The ``biceps`` command: the app by default, and headless subcommands.
 
 ``biceps [CONFIG]`` opens the terminal app; ``biceps info``, ``snapshot`` and
-``export-mesh`` work with no terminal at all. The app (and with it Textual) is imported
-only inside its own command, so the headless commands stay light and start fast.
+``export-mesh`` work with no terminal at all. Each command imports what it needs inside
+itself: Textual only for the app, numba only where a picture is rendered, and nothing heavy
+for ``--help``, so every command starts as fast as its work allows.
 
 Every deliberate refusal (a bad config, an impossible length, a file that cannot be
 written) ends the process with exit code 2 and one clear message on stderr.
@@ -16,17 +17,16 @@ import json
 import math
 import sys
 from pathlib import Path
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 import click
 
-from biceps.engine.arm import Arm
-from biceps.engine.coldstart import prepare_kernels
-from biceps.engine.config import DEFAULT_CONFIG, load_config
+from biceps.configs import DEFAULT as DEFAULT_CONFIG
 from biceps.engine.errors import BicepsError
-from biceps.engine.export import MESH_FORMATS, check_writable, parse_size, write_mesh, write_png
-from biceps.engine.scene import Scene, SceneRenderer
 
+if TYPE_CHECKING:
+    from biceps.engine.arm import Arm
+    from biceps.engine.scene import Scene
 
 
 class _FiniteFloat(click.ParamType):
@@ -128,6 +128,8 @@ def main() -> None:
 @_refusals_exit_2
 def app(config: Path, colors: str, fps: int | None) -> None:
     """Open the terminal app on CONFIG (default: configs/biceps.toml)."""
+    from biceps.engine.config import load_config
+
     loaded = load_config(config)  # fail here, before the terminal switches screens
     from biceps.tui.app import run_app
 
@@ -141,6 +143,8 @@ def app(config: Path, colors: str, fps: int | None) -> None:
 @_refusals_exit_2
 def info(config: Path, length: float | None, flexion: float | None, as_json: bool) -> None:
     """Length, flexion, volume and radii of the muscle in CONFIG."""
+    from biceps.engine.config import load_config
+
     arm = posed(load_config(config).arm, length, flexion)
     facts = describe(arm)
     if as_json:
@@ -180,6 +184,8 @@ def describe(arm: Arm) -> dict[str, Any]:
 
 
 def _parse_size(_ctx: Any, _param: Any, value: str) -> tuple[int, int]:
+    from biceps.engine.export import parse_size
+
     try:
         return parse_size(value)
     except ValueError as error:
@@ -218,6 +224,9 @@ def view_options(command: Callable) -> Callable:
 def posed_scene(config_path: Path, length: float | None, flexion: float | None,
                 **overrides: Any) -> Scene:
     """The config's scene in the asked pose, with the command line's overrides applied."""
+    from biceps.engine.config import load_config
+    from biceps.engine.scene import Scene
+
     scene = Scene.of(load_config(config_path))
     scene = scene.with_arm(posed(scene.arm, length, flexion))
     view = {k: overrides[k] for k in ("yaw", "pitch", "roll", "scale") if overrides[k] is not None}
@@ -242,12 +251,17 @@ def posed_scene(config_path: Path, length: float | None, flexion: float | None,
 def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: bool,
              length: float | None, flexion: float | None, **overrides: Any) -> None:
     """Render CONFIG to a PNG file, with no terminal needed."""
+    from biceps.engine.export import check_writable, write_png
+    from biceps.engine.scene import SceneRenderer
+
     if ansi == (output is not None):
         raise click.UsageError("give -o FILE.png, or --ansi to print to the terminal")
     if output is not None:
         check_writable(output, ".png")
     scene = posed_scene(config, length, flexion, **overrides)
     if _own_process():
+        from biceps.engine.coldstart import prepare_kernels
+
         prepare_kernels(scene.render.shading, scene.render.ssaa)  # forks: see coldstart
     if ansi:
         from biceps.tui.ansi import print_picture  # rich, only for this mode
@@ -275,6 +289,9 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: boo
 def export_mesh(config: Path, output: Path, segments: int | None, length: float | None,
                 flexion: float | None) -> None:
     """Write the arm in CONFIG as a mesh: muscle and bones as separate named parts, in cm."""
+    from biceps.engine.config import load_config
+    from biceps.engine.export import MESH_FORMATS, check_writable, write_mesh
+
     check_writable(output, *MESH_FORMATS)
     loaded = load_config(config)
     arm = posed(loaded.arm, length, flexion)
@@ -298,8 +315,8 @@ def run() -> None:
         main(obj=OWN_PROCESS)
     finally:
         # At exit Python collects garbage again and again as it tears the modules down, and
-        # each pass walks every object numba and LLVM have made: about 0.2 s after a
-        # snapshot, a third of its time. Frozen objects are left for the OS to free.
+        # each pass walks every object numba and LLVM have made, a large share of a short
+        # command's time. Frozen objects are left for the OS to free.
         gc.freeze()
 
 

@@ -13,7 +13,6 @@ import difflib
 import os
 import re
 import tomllib
-from importlib.resources import files
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -21,17 +20,13 @@ from typing import Annotated, Any, Literal
 import tomlkit
 from pydantic import AllowInfNan, BaseModel, ConfigDict, Field, Strict, ValidationError, model_validator
 
+from biceps.configs import DEFAULT as DEFAULT_CONFIG, FOLDER as BUNDLED
 from biceps.engine.arm import Arm
 from biceps.engine.errors import ConfigError, RefusedChange
 from biceps.engine.files import write_atomically
 from biceps.engine.muscle import Muscle, VolumeMode
 from biceps.engine.skeleton import Skeleton, check_skeleton
 from biceps.engine.transforms import Light
-
-BUNDLED = Path(str(files("biceps.configs")))
-"""The folder of the bundled models (installed as package data, so a real folder)."""
-
-DEFAULT_CONFIG = BUNDLED / "biceps.toml"
 
 # Strict numbers: "1.5" is not a number and true is not 1 (an int is still a fine float).
 Number = Annotated[float, Strict(), AllowInfNan(False)]

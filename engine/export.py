@@ -13,7 +13,7 @@ from PIL import Image
 from biceps.engine.arm import Arm
 from biceps.engine.errors import FileError, shown
 from biceps.engine.files import write_atomically
-from biceps.engine.scene import arm_parts
+from biceps.engine.mesh import arm_parts
 
 # zlib level 1: within a few per cent of level 6's size on these pictures (a flat
 # background, smooth shading) at a fraction of the time, which dominates a headless snapshot.

@@ -10,11 +10,17 @@ profile gives one closed, watertight, consistently wound surface, and that one r
 Vertices are ordered from the start pole, ring by ring along the profile, to the end pole.
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from biceps.engine.arm import Arm
 
 DEFAULT_SEGMENTS = 48
 """Vertices around the axis: a 48-gon keeps 99.7 % of its circle's area (k sin(2 pi/k) / 2 pi)."""
@@ -159,6 +165,15 @@ def arm_meshes(
         "forearm": cylinder_mesh(elbow, forearm_end, forearm_radius, segments),
         "elbow": sphere_mesh(elbow, elbow_radius, segments),
     }
+
+
+def arm_parts(arm: Arm, segments: int) -> dict[str, Mesh]:
+    """The arm in its current pose: "muscle", "humerus", "forearm" and "elbow", world space."""
+    pose = arm.pose
+    return arm_meshes(
+        pose.shoulder, pose.origin, pose.elbow, pose.insertion, pose.hand,
+        arm.muscle.radii, arm.length, segments,
+    )  # fmt: skip
 
 
 def _bone_end(elbow, free_end, attachment) -> np.ndarray:

@@ -2,15 +2,8 @@
 
 from __future__ import annotations
 
-import fcntl
-import os
 import re
-import select
-import struct
-import subprocess
 import sys
-import termios
-import time
 from pathlib import Path
 
 import numpy as np
@@ -18,46 +11,17 @@ import pytest
 
 from biceps.engine.config import load_config
 from biceps.engine.scene import Scene, SceneRenderer
+from pty_app import UPPER_HALF, first_picture
 from vt import Screen
 
 ROOT = Path(__file__).resolve().parents[2]
-UPPER_HALF = "▀".encode()
 
 
-def _first_picture(config: Path, *options: str, timeout: float = 120.0,
-                   **variables: str) -> bytes:
+def _first_picture(config: Path, *options: str, **variables: str) -> bytes:
     """What ``biceps app`` writes to a 100x30 terminal until its first picture is out;
     ``variables`` are added to its environment."""
-    master, slave = os.openpty()
-    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 100, 0, 0))
-    environment = {key: value for key, value in os.environ.items()
-                   if not key.startswith("TEXTUAL")}
-    environment.update(TERM="xterm-256color", COLORTERM="truecolor", **variables)
-    process = subprocess.Popen(
-        [sys.executable, "-m", "biceps.cli", "app", str(config), *options],
-        stdin=slave, stdout=slave, stderr=slave, env=environment, cwd=ROOT,
-        start_new_session=True,
-    )  # fmt: skip
-    os.close(slave)
-    output = bytearray()
-    deadline = time.monotonic() + timeout
-    quiet_since = None
-    try:
-        while time.monotonic() < deadline:
-            ready, _, _ = select.select([master], [], [], 0.05)
-            if ready:
-                output += os.read(master, 1 << 16)
-                quiet_since = None
-            elif UPPER_HALF in output:
-                # The picture has begun: the frame is whole once the output pauses.
-                quiet_since = quiet_since or time.monotonic()
-                if time.monotonic() - quiet_since > 0.5:
-                    return bytes(output)
-        pytest.fail(f"no picture within {timeout} s:\n{output[-2000:]!r}")
-    finally:
-        process.kill()
-        process.wait()
-        os.close(master)
+    command = [sys.executable, "-m", "biceps", "app", str(config), *options]
+    return first_picture(command, cwd=ROOT, **variables).output
 
 
 def _colour_codes(output: bytes) -> list[str]:

@@ -1,0 +1,72 @@
+"""The real app in a pseudo-terminal, as a person would start it."""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import select
+import struct
+import subprocess
+import termios
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+UPPER_HALF = "▀".encode()
+
+
+@dataclass
+class Run:
+    output: bytes  # what the app wrote, up to its first picture (and its exit, if keys quit it)
+    exit_code: int | None  # None: still running when the test was done with it
+
+
+def first_picture(command: list[str], *, cwd: Path, size: tuple[int, int] = (100, 30),
+                  keys: bytes = b"", timeout: float = 120.0, **variables: str) -> Run:
+    """Start ``command`` in a terminal of ``size`` (columns, rows) and read until its first
+    picture is out; then type ``keys`` and wait for it to end. ``variables`` are added to
+    its environment."""
+    columns, rows = size
+    master, slave = os.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, 0, 0))
+    environment = {key: value for key, value in os.environ.items()
+                   if not key.startswith("TEXTUAL")}
+    environment.update(TERM="xterm-256color", COLORTERM="truecolor", **variables)
+    process = subprocess.Popen(command, stdin=slave, stdout=slave, stderr=slave,
+                               env=environment, cwd=cwd, start_new_session=True)
+    os.close(slave)
+    output = bytearray()
+    deadline = time.monotonic() + timeout
+    try:
+        _read_until_picture(master, output, deadline)
+        if not keys:
+            return Run(bytes(output), None)
+        os.write(master, keys)
+        while process.poll() is None and time.monotonic() < deadline:
+            if select.select([master], [], [], 0.05)[0]:
+                try:
+                    output += os.read(master, 1 << 16)
+                except OSError:  # the terminal's other side has closed: the app is gone
+                    break
+        return Run(bytes(output), process.wait(timeout=max(deadline - time.monotonic(), 1)))
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+        os.close(master)
+
+
+def _read_until_picture(master: int, output: bytearray, deadline: float) -> None:
+    quiet_since = None
+    while time.monotonic() < deadline:
+        if select.select([master], [], [], 0.05)[0]:
+            output += os.read(master, 1 << 16)
+            quiet_since = None
+        elif UPPER_HALF in output:
+            # The picture has begun: the frame is whole once the output pauses.
+            quiet_since = quiet_since or time.monotonic()
+            if time.monotonic() - quiet_since > 0.5:
+                return
+    pytest.fail(f"no picture before the time limit:\n{output[-2000:]!r}")

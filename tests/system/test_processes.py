@@ -1,0 +1,147 @@
+"""The command as a user runs it: its own process, what it imports, and an installed wheel."""
+
+from __future__ import annotations
+
+import pkgutil
+import subprocess
+import sys
+import sysconfig
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import biceps.engine
+from biceps.engine.config import DEFAULT_CONFIG
+from pty_app import first_picture
+
+ROOT = Path(__file__).resolve().parents[2]
+INVALID = ROOT / "tests" / "invalid_configs"
+
+
+def _python(code: str, *args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-c", textwrap.dedent(code), *args],
+                          capture_output=True, text=True, timeout=300, cwd=cwd)
+
+
+def _imported_after(argv: list[str], *packages: str) -> list[str]:
+    """The modules of ``packages`` that ``biceps ARGV`` imports, run in a fresh process."""
+    process = _python(f"""
+        import sys
+        from biceps.cli import main
+        try:
+            main({argv!r})
+        except SystemExit as done:
+            assert done.code in (0, None), done.code
+        print(sorted(m for m in sys.modules if m.split('.')[0] in {packages!r}
+                     or m.startswith({packages!r})))
+    """)
+    assert process.returncode == 0, process.stderr
+    return eval(process.stdout.strip().splitlines()[-1])
+
+
+def test_no_engine_module_imports_a_terminal_library_or_the_app():
+    modules = [info.name for info in pkgutil.walk_packages(biceps.engine.__path__, "biceps.engine.")]
+    assert "biceps.engine.scene" in modules and len(modules) > 10
+    process = _python(f"""
+        import importlib, sys
+        for name in {modules!r}:
+            importlib.import_module(name)
+        print(sorted(m for m in sys.modules
+                     if m.split('.')[0] in ('textual', 'rich', 'rich_pixels')
+                     or m.startswith(('biceps.tui', 'biceps.cli'))))
+    """)
+    assert process.returncode == 0, process.stderr
+    assert process.stdout.strip() == "[]"
+
+
+@pytest.mark.parametrize("argv", [
+    ["--help"],
+    ["info"],
+    ["info", "--flexion", "90", "--json"],
+])
+def test_commands_that_draw_nothing_import_no_numba(argv):
+    assert _imported_after(argv, "numba", "llvmlite", "textual") == []
+
+
+def test_export_mesh_imports_no_numba(tmp_path):
+    assert _imported_after(["export-mesh", "-o", str(tmp_path / "arm.glb")], "numba") == []
+    assert (tmp_path / "arm.glb").stat().st_size > 0
+
+
+def test_snapshot_runs_without_importing_textual_or_rich(tmp_path):
+    out = tmp_path / "arm.png"
+    argv = ["snapshot", str(DEFAULT_CONFIG), "-o", str(out), "--size", "64x48"]
+    assert _imported_after(argv, "textual", "rich", "biceps.tui") == []
+    assert out.exists()
+
+
+@pytest.mark.parametrize("name", ["binary_junk.toml", "broken_toml.toml", "unknown_key.toml"])
+def test_a_real_process_prints_no_traceback(name):
+    process = subprocess.run(
+        [sys.executable, "-m", "biceps", "info", str(INVALID / name)],
+        capture_output=True, text=True, timeout=60,
+    )
+    assert process.returncode == 2
+    assert process.stderr.count("\n") == 1
+    assert "Traceback" not in process.stderr
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory) -> Path:
+    """A fresh virtual environment holding a wheel built from this repository, and the
+    bin folder of it. Its dependencies come from the environment running the tests, added
+    with a .pth line (which, unlike a site folder, runs none of that folder's .pth files,
+    so the editable install there stays out)."""
+    where = tmp_path_factory.mktemp("wheel")
+    built = subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(where), str(ROOT)],
+        capture_output=True, text=True, timeout=600,
+    )
+    assert built.returncode == 0, built.stderr
+    (wheel,) = where.glob("biceps-*.whl")
+    venv = where / "venv"
+    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=300)
+    python = venv / "bin" / "python"
+    subprocess.run([python, "-m", "pip", "install", "-q", "--no-deps", "--no-index", wheel],
+                   check=True, timeout=300)
+    purelib = subprocess.run([python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                             capture_output=True, text=True, check=True).stdout.strip()
+    Path(purelib, "dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
+    return venv / "bin"
+
+
+def test_a_wheel_installs_one_biceps_package_and_the_bundled_models(installed):
+    process = subprocess.run([installed / "python", "-c", """
+import importlib.util, pathlib, biceps, biceps.configs
+print(pathlib.Path(biceps.__file__).parent.parent)
+print(biceps.configs.DEFAULT)
+print([n for n in ("engine", "tui", "configs") if importlib.util.find_spec(n)])
+"""], capture_output=True, text=True, cwd=installed, timeout=60)
+    assert process.returncode == 0, process.stderr
+    site, default, tops = process.stdout.splitlines()
+    assert default.startswith(site) and Path(default).is_file()
+    assert tops == "[]"
+    assert not any(Path(site, name).exists() for name in ("engine", "tui", "configs"))
+
+
+def test_the_installed_command_runs_on_the_bundled_model_from_anywhere(installed, tmp_path):
+    def biceps(*args: str) -> subprocess.CompletedProcess:
+        return subprocess.run([installed / "biceps", *args], capture_output=True, text=True,
+                              cwd=tmp_path, timeout=300)
+
+    info = biceps("info", "--json")
+    assert info.returncode == 0, info.stderr
+    assert '"nodes": 15' in info.stdout
+    shot = biceps("snapshot", "-o", "arm.png", "--size", "160x90")
+    assert shot.returncode == 0, shot.stderr
+    assert Image.open(tmp_path / "arm.png").size == (160, 90)
+    assert np.asarray(Image.open(tmp_path / "arm.png")).std() > 0  # a picture, not a blank
+    mesh = biceps("export-mesh", "-o", "arm.obj")
+    assert mesh.returncode == 0, mesh.stderr
+    assert "o muscle" in (tmp_path / "arm.obj").read_text()
+    app = first_picture([str(installed / "biceps")], cwd=tmp_path, keys=b"q")
+    assert b"biceps.toml" in app.output
+    assert app.exit_code == 0
