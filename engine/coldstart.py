@@ -1,18 +1,22 @@
 """The first run's compilations, two at a time.
 
 With an empty numba cache (the first run after installing or upgrading) a picture waits
-while numba compiles its kernels: about 0.7 s for the vertex stage, then 1.2 s for the
-rasterizer, one after the other, as numba compiles in Python under the GIL: a thread
-cannot take half of the work, but a forked child process can. It compiles into the cache,
-and this process then loads from there what the child compiled.
+while numba compiles its kernels, the vertex stage and then the rasterizer, one after the
+other: numba compiles in Python under the GIL, so a thread cannot take half of the work,
+but a forked child process can. It compiles into the cache, and this process then loads
+from there what the child compiled.
 
-- ``biceps snapshot`` (:func:`prepare_kernels`): the child compiles the rasterizer while
-  this process compiles the vertex stage. With a warm cache the child would only load
-  what the first frame loads anyway, so once the vertex stage has come from the cache the
-  child is stopped rather than waited for.
-- The app: the child compiles a whole frame's kernels while this process starts Textual
-  (which compiles the SGR rewriter), and the render thread waits for it before its first
-  frame.
+Everything about it is here; the rest of the program makes one call:
+
+- ``biceps snapshot`` calls :func:`prepare_kernels`: the child compiles the rasterizer
+  while this process compiles the vertex stage. With a warm cache the child would only
+  load what the first frame loads anyway, so once the vertex stage has come from the
+  cache the child is stopped rather than waited for.
+- The app calls :func:`compile_aside` with a job that draws a tiny frame: the child
+  compiles a whole frame's kernels while this process starts Textual. Every
+  :class:`~biceps.engine.scene.SceneRenderer` calls :func:`wait_for_aside` before its
+  first frame, so the render thread loads what the child compiled instead of compiling
+  it again beside it.
 """
 
 from __future__ import annotations
@@ -25,9 +29,6 @@ import time
 import warnings
 from typing import Callable
 
-from numba.core import event
-
-from biceps.engine.render import Renderer
 
 
 class Aside:
@@ -64,6 +65,11 @@ class Aside:
             return not self._running
 
 
+_aside: Aside | None = None
+"""The child started by :func:`compile_aside`, until someone has waited for it."""
+_aside_lock = threading.Lock()
+
+
 def compile_aside(job: Callable[[], None]) -> Aside | None:
     """Run ``job`` (a function that compiles, or loads, kernels) in a forked child, where
     that helps and is safe: where processes fork, with two cores or more, and with no
@@ -75,7 +81,11 @@ def compile_aside(job: Callable[[], None]) -> Aside | None:
     so that the collector does not write to every object and copy every page the two
     processes share: what exists by then is never collected, so call it early in a
     process, or in one that ends soon after.
+
+    The child is kept for :func:`wait_for_aside`, which every renderer calls before its
+    first frame.
     """
+    global _aside
     if not hasattr(os, "fork") or _cores() < 2 or threading.active_count() > 1:
         return None
     gc.freeze()
@@ -86,13 +96,31 @@ def compile_aside(job: Callable[[], None]) -> Aside | None:
             job()
         finally:
             os._exit(0)  # never back into the caller's code, its exit handlers or buffers
-    return Aside(pid)
+    with _aside_lock:
+        _aside = Aside(pid)
+    return _aside
+
+
+def wait_for_aside() -> None:
+    """Return once the child started by :func:`compile_aside`, if any, has ended, so that
+    what it compiled is loaded from the cache rather than compiled again. Cheap when there
+    is none. A child that never ends is stopped after :meth:`Aside.wait`'s time limit; one
+    whose process quits first finishes its compilation, and the next start is warm."""
+    global _aside
+    with _aside_lock:
+        aside, _aside = _aside, None
+    if aside is not None:
+        aside.wait()
 
 
 def prepare_kernels(shading: str, ssaa: int = 1) -> None:
     """Compile, or load from the cache, the kernels of a frame in ``shading`` with ``ssaa``
     supersampling, the rasterizer's in a child process (see :func:`compile_aside`) while
     this one does the vertex stage."""
+    from numba.core import event  # numba, only once a picture is to be made
+
+    from biceps.engine.render import Renderer
+
     aside = compile_aside(lambda: Renderer().prepare(shading, ssaa, vertex_stage=False))
     if aside is None:
         return  # the first frame compiles what it needs
@@ -104,7 +132,7 @@ def prepare_kernels(shading: str, ssaa: int = 1) -> None:
         raise
     if not compiled.buffer:  # all from the cache: so, most likely, is the rasterizer
         aside.stop()
-    aside.wait()
+    wait_for_aside()
 
 
 def _cores() -> int:

@@ -12,9 +12,10 @@ from functools import lru_cache
 
 import numpy as np
 
+from biceps.engine import coldstart
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, LightTable, RenderTable, ViewTable, rgb
-from biceps.engine.mesh import Mesh, arm_meshes
+from biceps.engine.mesh import Mesh, arm_parts
 from biceps.engine.render import Renderer
 from biceps.engine.skeleton import Skeleton
 from biceps.engine.transforms import Camera, frame_sphere, model_matrix
@@ -44,15 +45,6 @@ class Scene:
 
     def with_arm(self, arm: Arm) -> Scene:
         return replace(self, arm=arm)
-
-
-def arm_parts(arm: Arm, segments: int) -> dict[str, Mesh]:
-    """The arm in its current pose: "muscle", "humerus", "forearm" and "elbow", world space."""
-    pose = arm.pose
-    return arm_meshes(
-        pose.shoulder, pose.origin, pose.elbow, pose.insertion, pose.hand,
-        arm.muscle.radii, arm.length, segments,
-    )  # fmt: skip
 
 
 def scene_mesh(arm: Arm, segments: int, muscle_colour: str,
@@ -100,6 +92,7 @@ class SceneRenderer:
     """
 
     def __init__(self) -> None:
+        coldstart.wait_for_aside()  # load, rather than compile again, what a child compiles
         self._renderer = Renderer()
         self._mesh_key: tuple | None = None
         self._mesh: tuple[Mesh, np.ndarray] | None = None

@@ -109,14 +109,11 @@ class BicepsApp(App[None]):
     scene: var[Scene] = var(None)
     unsaved: var[bool] = var(False)
 
-    def __init__(self, config: Config, fps: float | None = None,
-                 kernels: coldstart.Aside | None = None) -> None:
+    def __init__(self, config: Config, fps: float | None = None) -> None:
         """``fps``: the most frames a second the picture is redrawn at (None: no cap but
-        the terminal's pace and Textual's own limit). ``kernels``: a child process
-        compiling a frame's kernels, for the first frame to wait for."""
+        the terminal's pace and Textual's own limit)."""
         super().__init__()
         self.pacer = Pacer(self._ask_cursor_position, self.set_timer, fps)
-        self._kernels = kernels
         self._adopt(config, Scene.of(config))
         self.set_reactive(BicepsApp.scene, self._saved)
         self._export_path = f"{config.path.stem}.png"
@@ -125,7 +122,7 @@ class BicepsApp(App[None]):
         self._notified_until: dict[str, float] = {}
 
     def get_default_screen(self) -> Screen:
-        return MainScreen(self.pacer, self._kernels)
+        return MainScreen(self.pacer)
 
     def get_driver_class(self) -> type[Driver]:
         # Textual's own driver, sending only the colour codes that change (tui/sgr.py).
@@ -371,8 +368,9 @@ def run_app(config: Config, colors: str = "auto", fps: float | None = None,
         # Textual reads the variable once, when it is first imported, which has happened
         # by now; its console takes the colour system from this constant.
         textual.constants.COLOR_SYSTEM = colors
-    kernels = coldstart.compile_aside(partial(_draw_a_frame, config)) if compile_aside else None
-    BicepsApp(config, fps=fps, kernels=kernels).run()
+    if compile_aside:
+        coldstart.compile_aside(partial(_draw_a_frame, config))
+    BicepsApp(config, fps=fps).run()
 
 
 def _draw_a_frame(config: Config) -> None:

@@ -9,7 +9,6 @@ from textual.screen import Screen
 from textual.widgets import Footer, Static
 
 from biceps.engine.arm import Arm
-from biceps.engine.coldstart import Aside
 from biceps.engine.scene import Scene
 from biceps.tui.pacing import Pacer
 from biceps.tui.widgets.node_table import NodeTable
@@ -23,15 +22,14 @@ SMALLEST_USEFUL = (60, 16)
 class MainScreen(Screen[None]):
     AUTO_FOCUS = "#viewport"
 
-    def __init__(self, pacer: Pacer, kernels: Aside | None) -> None:
+    def __init__(self, pacer: Pacer) -> None:
         super().__init__()
         self._pacer = pacer
-        self._kernels = kernels
         self._arm: Arm | None = None
 
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
-            yield Viewport(self._pacer, self._kernels, id="viewport")
+            yield Viewport(self._pacer, id="viewport")
             with Vertical(id="side"):
                 yield Stats(id="stats")
                 yield NodeTable(id="nodes")

@@ -9,8 +9,7 @@ It also turns the frame into lines, and a new frame refreshes only the lines tha
 screen was made, so they change with it.
 
 The next request is taken only when the :class:`~tui.pacing.Pacer` says the terminal has
-taken the last frame. On a first run the render thread may first wait for a child process
-compiling its kernels (``engine/coldstart.py``).
+taken the last frame.
 """
 
 from __future__ import annotations
@@ -27,7 +26,6 @@ from textual.message import Message
 from textual.strip import Strip
 from textual.widget import Widget
 
-from biceps.engine.coldstart import Aside
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer
 from biceps.tui.halfblocks import HalfBlocks, Lines
@@ -84,12 +82,10 @@ class Viewport(Widget, can_focus=True):
             super().__init__()
             self.steps = steps
 
-    def __init__(self, pacer: Pacer, kernels: Aside | None, *, id: str | None = None) -> None:
-        """``pacer`` says when the next frame may be made; ``kernels``: a child process
-        compiling the kernels a frame runs, to wait for before the first frame."""
+    def __init__(self, pacer: Pacer, *, id: str | None = None) -> None:
+        """``pacer`` says when the next frame may be made."""
         super().__init__(id=id)
         self._pacer = pacer
-        self._kernels = kernels
         self._scene: Scene | None = None
         self._requests: LatestOnly[_Request] = LatestOnly()
         self._requested = 0  # the number of the newest request
@@ -114,8 +110,6 @@ class Viewport(Widget, can_focus=True):
 
     def on_unmount(self) -> None:
         self._requests.close()
-        if self._kernels is not None:
-            self._kernels.stop()  # the render thread may be waiting for it
 
     def on_resize(self) -> None:
         self._request_frame()
@@ -132,8 +126,6 @@ class Viewport(Widget, can_focus=True):
         # Both keep what they need from one frame to the next (buffers, the lines on
         # screen), so they are this thread's own.
         renderer, blocks = SceneRenderer(), HalfBlocks()
-        if self._kernels is not None:
-            self._kernels.wait()  # then load from the cache what it compiled
         while (request := self._requests.take()) is not None:
             try:
                 frame = renderer.render(request.scene, request.width, 2 * request.height)
