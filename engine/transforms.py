@@ -92,7 +92,8 @@ def look_at(eye, target, up=(0.0, 1.0, 0.0)) -> np.ndarray:
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b for (3,) vectors (``np.cross`` costs some 20 us a call, a frame's budget)."""
+    """a x b for (3,) vectors (``np.cross`` costs more than the arithmetic, per call, by
+    far: its checks and broadcasting are made for large arrays)."""
     return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
                      a[0] * b[1] - a[1] * b[0]])
 

@@ -131,7 +131,7 @@ class BicepsApp(App[None]):
     def on_ready(self) -> None:
         # Every frame makes thousands of short-lived segments, and every so often Python
         # then collects the oldest generation too, walking all of Textual's and numba's
-        # objects: 50 to 80 ms without a frame. Set apart what exists once the app is up
+        # objects, long enough to miss frames. Set apart what exists once the app is up
         # (gc.freeze), so that those collections walk only what came after.
         gc.collect()
         gc.freeze()

@@ -255,7 +255,7 @@ def minimize_sgr(source, out, length, attributes, off_masks, states, parameters)
 def _copy(source, start, end, target, at):
     """target[at:at + end - start] = source[start:end], front to back (overlapping only with
     at <= start). A loop, not slice assignment: numba compiles that with its error message,
-    string formatting and all, which took 2 of the 5.4 s of this module's first, cold
+    string formatting and all, which took a large share of this module's first, cold
     compilation, before the app could show anything."""
     for index in range(end - start):
         target[at + index] = source[start + index]
