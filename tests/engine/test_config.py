@@ -1,6 +1,7 @@
 """Configuration files: the bundled ones load, bad ones are refused clearly, saving is safe."""
 
 import stat
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -122,7 +123,7 @@ def test_save_then_load_gives_the_same_model(user_copy):
 
 def test_saving_keeps_the_users_comments_and_layout(user_copy):
     config = load_config(user_copy)
-    _save(config, config.arm.at_length(31.0), view=config.view.model_copy(update={"yaw": 40.0}))
+    _save(config, config.arm.at_length(31.0), view=replace(config.view, yaw=40.0))
     text = user_copy.read_text()
     assert "# A human biceps brachii on the arm skeleton of OpenSim's arm26 model." in text
     assert "upper_arm = 29.1            # humerus, elbow to shoulder" in text
@@ -142,7 +143,7 @@ def test_saving_writes_only_what_differs_from_the_defaults(tmp_path):
     path = tmp_path / "short.toml"
     path.write_text("[muscle]\nlength = 33.0\nradius = [0.5, 2.0, 0.5]\ngrowth = [0, 1, 0]\n")
     config = load_config(path)
-    _save(config, light=config.light.model_copy(update={"position": (1.0, 2.0, 3.0)}))
+    _save(config, light=replace(config.light, position=(1.0, 2.0, 3.0)))
     text = path.read_text()
     assert "[light]\nposition = [1.0, 2.0, 3.0]" in text
     assert "[view]" not in text and "[render]" not in text

@@ -1,4 +1,5 @@
-"""Runtime settings: a view, light or render setting outside its rules cannot be made."""
+"""Runtime settings: a view, light or render setting outside its rules cannot be made, by
+any path, and the file's tables agree with the values on every default and bound."""
 
 import math
 from dataclasses import FrozenInstanceError, replace
@@ -6,8 +7,11 @@ from dataclasses import FrozenInstanceError, replace
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from pydantic import ValidationError
 
+from biceps.engine.config import LightTable, RenderTable, ViewTable
 from biceps.engine.errors import SettingError
+from biceps.engine.scene import Scene
 from biceps.engine.settings import RenderSettings, View
 from biceps.engine.transforms import Light
 
@@ -59,6 +63,9 @@ RENDER_REFUSES = [
 REFUSALS = ([(View, "view", *case) for case in VIEW_REFUSES]
             + [(Light, "light", *case) for case in LIGHT_REFUSES]
             + [(RenderSettings, "render", *case) for case in RENDER_REFUSES])
+TABLES = {View: ViewTable, Light: LightTable, RenderSettings: RenderTable}
+MADE_BY = {View: ViewTable.view, Light: LightTable.light,
+           RenderSettings: RenderTable.render_settings}
 
 
 @pytest.mark.parametrize("kind, owner, field, value, allowed", REFUSALS)
@@ -108,3 +115,65 @@ def test_a_field_of_view_is_made_exactly_when_it_is_between_1_and_170_degrees(fo
         assert not allowed
     else:
         assert allowed
+
+
+@pytest.mark.parametrize("kind, owner, field, value, allowed", REFUSALS)
+def test_a_scene_cannot_be_made_with_a_setting_outside_its_rules(config, kind, owner, field,
+                                                                 value, allowed):
+    defaults = {"view": View(), "light": Light(), "render": RenderSettings()}
+    with pytest.raises(SettingError, match=f"^{owner}.{field} is "):
+        Scene(config.arm, **{**defaults, owner: kind(**{field: value})})
+
+
+@pytest.mark.parametrize("kind, owner, field, value, allowed", REFUSALS)
+def test_a_scene_refuses_a_change_to_a_setting_outside_its_rules(config, kind, owner, field,
+                                                                 value, allowed):
+    scene = Scene.of(config)
+    change = {"view": scene.with_view, "light": scene.with_light, "render": scene.with_render}
+    with pytest.raises(SettingError, match=f"^{owner}.{field} is "):
+        change[owner](**{field: value})
+    assert scene == Scene.of(config)
+
+
+def test_the_fov_and_scale_of_the_issue_are_refused(config):
+    scene = Scene.of(config)
+    with pytest.raises(SettingError, match="view.scale is -3"):
+        scene.with_view(fov=500, scale=-3)
+    with pytest.raises(SettingError, match="view.fov is 500"):
+        scene.with_view(fov=500)
+
+
+@pytest.mark.parametrize("kind, owner, field, value, allowed", REFUSALS)
+def test_the_file_refuses_what_the_setting_refuses(kind, owner, field, value, allowed):
+    with pytest.raises(ValidationError):
+        TABLES[kind](**{field: value})
+
+
+@pytest.mark.parametrize("kind", TABLES)
+def test_a_table_left_empty_is_the_default_setting(kind):
+    assert TABLES[kind]().model_dump() == TABLES[kind].of(kind()).model_dump()
+    assert MADE_BY[kind](TABLES[kind]()) == kind()
+
+
+@pytest.mark.parametrize("setting", [
+    View(yaw=-25.0, scale=1.3, offset=(1.0, -2.0, 0.5), fov=60.0),
+    Light(position=(-80.0, 40.0, 60.0), shininess=512.0),
+    RenderSettings(segments=3, shading="phong", ssaa=4, background="#000000"),
+])
+def test_a_setting_comes_back_from_its_table_unchanged(setting):
+    table = TABLES[type(setting)].of(setting)
+    assert MADE_BY[type(setting)](table) == setting
+
+
+@given(st.floats(), st.floats())
+def test_the_file_and_the_view_agree_on_scale_and_fov(scale, fov):
+    made = table_made = True
+    try:
+        View(scale=scale, fov=fov)
+    except SettingError:
+        made = False
+    try:
+        ViewTable(scale=scale, fov=fov)
+    except ValidationError:
+        table_made = False
+    assert made == table_made
