@@ -209,7 +209,11 @@ class Config:
 def load_config(path: str | os.PathLike) -> Config:
     """Read and validate a configuration file; raises :class:`ConfigError` saying why not."""
     path = Path(path)
-    source = _read_text(path)
+    return _parsed(path, _read_text(path))
+
+
+def _parsed(path: Path, source: str) -> Config:
+    """The configuration that ``source``, read from ``path``, describes."""
     try:
         data = tomllib.loads(source)
     except tomllib.TOMLDecodeError as error:
@@ -286,11 +290,12 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
     return arm
 
 
-def _describe(path: Path, source: str, error: ValidationError) -> str:
-    """One line per problem: ``file:line: field.path: what is wrong (found ...)``."""
+def _describe(path: Path, source: str, error: ValidationError, within: tuple = ()) -> str:
+    """One line per problem: ``file:line: field.path: what is wrong (found ...)``; ``within``
+    is the path of the table validated, when it is not the whole file."""
     lines = []
     for problem in error.errors(include_url=False):
-        location = problem["loc"]
+        location = (*within, *problem["loc"])
         kind = problem["type"]
         if kind == "extra_forbidden":
             message = _unknown_key_message(location)
@@ -374,19 +379,25 @@ def save_config(config: Config, arm: Arm, view: View, light: Light, render: Rend
 
     Only values that differ from what the file says (or implies by default) are written, so
     the user's comments, order and layout survive. ``path`` saves a copy elsewhere ("save
-    as"). Returns the configuration as now on disk; raises :class:`FileError` and leaves
-    every file as it was when it cannot write.
+    as"). The new text is read back as :func:`load_config` would read it before anything is
+    written, so a save never leaves a file that does not load. Returns the configuration as
+    now on disk; raises :class:`ConfigError` (the new text would not load) or
+    :class:`FileError` (it cannot be written) and then leaves every file as it was.
     """
     target = Path(path) if path is not None else config.path
     document = tomlkit.parse(config.source)
-    _write_muscle(document, arm)
-    _write_changes(document, "skeleton", SkeletonTable(), SkeletonTable.of(arm.skeleton))
-    _write_changes(document, "view", ViewTable(), ViewTable.of(view))
-    _write_changes(document, "light", LightTable(), LightTable.of(light))
-    _write_changes(document, "render", RenderTable(), RenderTable.of(render))
-    text = tomlkit.dumps(document)
+    try:
+        _write_muscle(document, arm)
+        _write_changes(target, document, "skeleton", SkeletonTable, arm.skeleton)
+        _write_changes(target, document, "view", ViewTable, view)
+        _write_changes(target, document, "light", LightTable, light)
+        _write_changes(target, document, "render", RenderTable, render)
+        text = tomlkit.dumps(document)
+        saved = _parsed(target, text)
+    except ConfigError as error:
+        raise ConfigError(f"not saved (nothing was written): {error}") from None
     write_atomically(target, text.encode("utf-8"))
-    return load_config(target)
+    return saved
 
 
 def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm) -> None:
@@ -433,10 +444,16 @@ def _update_value(container: Any, key: Any, value: float) -> None:
         container[key] = value
 
 
-def _write_changes(document: tomlkit.TOMLDocument, name: str, default: BaseModel,
-                   value: BaseModel) -> None:
+def _write_changes(path: Path, document: tomlkit.TOMLDocument, name: str, table: type[_Table],
+                   setting: Any) -> None:
+    """Write the fields of ``setting`` that differ from the ``[name]`` table in ``document``."""
+    try:
+        value = table.of(setting)
+    except ValidationError as error:  # a value that bypassed its own checks
+        raise ConfigError(_describe(path, "", error, within=(name,))) from None
+    default = table()
     existing = document.get(name)
-    for field in type(value).model_fields:
+    for field in table.model_fields:
         new = getattr(value, field)
         current = existing.get(field, getattr(default, field)) if existing else getattr(default, field)
         if _same(current, new):
