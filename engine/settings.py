@@ -21,6 +21,11 @@ from typing import Any, Callable, Literal, get_args
 from biceps.engine.errors import SettingError
 
 Shading = Literal["gouraud", "phong"]
+"""The shadings a file may name."""
+
+SHADINGS = (*get_args(Shading), "overdraw")
+"""Every shading the renderer draws (``engine/render.py``): also "overdraw", a debugging view
+that counts the triangles on each pixel, which a file cannot name and so cannot be saved."""
 
 COLOUR = "#[0-9a-fA-F]{6}"
 """A whole colour, ``#rrggbb``, as a regular expression."""
@@ -105,7 +110,8 @@ def one_of(choices: tuple[str, ...]) -> Rule:
 
     def check(where: str, value: Any) -> str:
         if not isinstance(value, str) or value not in choices:
-            raise _refused(where, value, " or ".join(map(repr, choices)))
+            *others, last = map(repr, choices)
+            raise _refused(where, value, f"{', '.join(others)} or {last}")
         return value
 
     return check
@@ -160,13 +166,13 @@ class RenderSettings:
     the supersampling factor (``ssaa`` x ``ssaa`` samples a pixel) and the colours."""
 
     segments: int = 48
-    shading: Shading = "gouraud"
+    shading: str = "gouraud"
     ssaa: int = 1
     muscle_colour: str = "#b4483e"
     bone_colour: str = "#e3d9c0"
     background: str = "#12161c"
 
     def __post_init__(self) -> None:
-        settle(self, "render", segments=integer(SEGMENTS), shading=one_of(get_args(Shading)),
+        settle(self, "render", segments=integer(SEGMENTS), shading=one_of(SHADINGS),
                ssaa=integer(SUPERSAMPLING), muscle_colour=colour, bone_colour=colour,
                background=colour)

@@ -195,6 +195,8 @@ INVALID_SAVES = {
                "render.ssaa: Input should be less than or equal to 4 (found 9)"),
     "unknown shading": (lambda c: {"render": _forged(c.render, shading="flat")},
                         "render.shading: Input should be 'gouraud' or 'phong' (found 'flat')"),
+    "overdraw, a debugging view": (lambda c: {"render": replace(c.render, shading="overdraw")},
+                                   "render.shading: Input should be 'gouraud' or 'phong'"),
     "colour": (lambda c: {"render": _forged(c.render, background="red")},
                "render.background: should be a colour written #rrggbb (found 'red')"),
     "negative bone": (lambda c: {"arm": replace(c.arm, skeleton=replace(c.arm.skeleton,

@@ -11,6 +11,7 @@ from pydantic import ValidationError
 
 from biceps.engine.config import LightTable, RenderTable, ViewTable
 from biceps.engine.errors import SettingError
+from biceps.engine.render import RASTERIZERS
 from biceps.engine.scene import Scene
 from biceps.engine.settings import RenderSettings, View
 from biceps.engine.transforms import Light
@@ -53,8 +54,8 @@ RENDER_REFUSES = [
     ("ssaa", True, "a whole number from 1 to 4"),
     ("segments", 2, "a whole number from 3 to 1024"),
     ("segments", 1025, "a whole number from 3 to 1024"),
-    ("shading", "flat", "'gouraud' or 'phong'"),
-    ("shading", None, "'gouraud' or 'phong'"),
+    ("shading", "flat", "'gouraud', 'phong' or 'overdraw'"),
+    ("shading", None, "'gouraud', 'phong' or 'overdraw'"),
     ("muscle_colour", "red", "a colour written #rrggbb"),
     ("bone_colour", "#12345", "a colour written #rrggbb"),
     ("background", "#12161c\n", "a colour written #rrggbb"),
@@ -79,6 +80,11 @@ def test_a_setting_outside_its_rules_cannot_be_made(kind, owner, field, value, a
 def test_replacing_a_field_checks_it_too(kind, owner, field, value, allowed):
     with pytest.raises(SettingError, match=f"^{owner}.{field} is "):
         replace(kind(), **{field: value})
+
+
+def test_a_setting_may_name_every_shading_the_renderer_draws():
+    assert {RenderSettings(shading=shading).shading for shading in RASTERIZERS} == {
+        "gouraud", "phong", "overdraw"}
 
 
 def test_the_defaults_are_settings():
