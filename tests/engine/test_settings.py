@@ -13,7 +13,7 @@ from biceps.engine.config import LightTable, RenderTable, ViewTable
 from biceps.engine.errors import SettingError
 from biceps.engine.render import RASTERIZERS
 from biceps.engine.scene import Scene
-from biceps.engine.settings import RenderSettings, View
+from biceps.engine.settings import SHADINGS, RenderSettings, View
 from biceps.engine.transforms import Light
 
 INF, NAN = math.inf, math.nan
@@ -82,9 +82,8 @@ def test_replacing_a_field_checks_it_too(kind, owner, field, value, allowed):
         replace(kind(), **{field: value})
 
 
-def test_a_setting_may_name_every_shading_the_renderer_draws():
-    assert {RenderSettings(shading=shading).shading for shading in RASTERIZERS} == {
-        "gouraud", "phong", "overdraw"}
+def test_a_setting_may_name_every_shading_the_renderer_draws_and_no_other():
+    assert set(SHADINGS) == set(RASTERIZERS)
 
 
 def test_the_defaults_are_settings():
