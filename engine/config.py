@@ -13,9 +13,9 @@ import difflib
 import os
 import re
 import tomllib
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any
 
 import tomlkit
 from pydantic import AllowInfNan, BaseModel, ConfigDict, Field, Strict, ValidationError, model_validator
@@ -25,17 +25,32 @@ from biceps.engine.arm import Arm
 from biceps.engine.errors import ConfigError, RefusedChange
 from biceps.engine.files import write_atomically
 from biceps.engine.muscle import Muscle, VolumeMode
+from biceps.engine.settings import (
+    COLOUR,
+    FIELD_OF_VIEW,
+    SCALE,
+    SEGMENTS,
+    SUPERSAMPLING,
+    Limits,
+    RenderSettings,
+    Shading,
+    View,
+)
 from biceps.engine.skeleton import Skeleton, check_skeleton
-from biceps.engine.transforms import Light
+from biceps.engine.transforms import FRACTION, SHININESS, Light
 
 # Strict numbers: "1.5" is not a number and true is not 1 (an int is still a fine float).
 Number = Annotated[float, Strict(), AllowInfNan(False)]
 Positive = Annotated[Number, Field(gt=0)]
 NonNegative = Annotated[Number, Field(ge=0)]
-Fraction = Annotated[Number, Field(ge=0, le=1)]
 Degrees = Annotated[Number, Field(ge=0, le=180)]
 Vector = tuple[Number, Number, Number]
-Colour = Annotated[str, Field(pattern=r"^#[0-9a-fA-F]{6}$")]
+Colour = Annotated[str, Field(pattern=f"^{COLOUR}$")]
+
+
+def _within(limits: Limits) -> Any:
+    # The runtime settings' own bounds, so that the file and the values agree.
+    return Field(**limits.constraints())
 
 
 class _Table(BaseModel):
@@ -106,37 +121,59 @@ class SkeletonTable(_Table):
 
 
 class ViewTable(_Table):
-    """How the model is turned, moved and scaled, and the camera's field of view."""
+    """How the model is turned, moved and scaled, and the camera's field of view, as in
+    :class:`View`, whose defaults and bounds these are."""
 
-    yaw: Number = 0.0
-    pitch: Number = 0.0
-    roll: Number = 0.0
-    scale: Positive = 1.0
-    offset: Vector = (0.0, 0.0, 0.0)
-    fov: Annotated[Number, Field(gt=1, lt=170)] = 35.0
+    yaw: Number = View.yaw
+    pitch: Number = View.pitch
+    roll: Number = View.roll
+    scale: Annotated[Number, _within(SCALE)] = View.scale
+    offset: Vector = View.offset
+    fov: Annotated[Number, _within(FIELD_OF_VIEW)] = View.fov
+
+    @classmethod
+    def of(cls, view: View) -> ViewTable:
+        return cls(**asdict(view))
+
+    def view(self) -> View:
+        return View(**self.model_dump())
 
 
 class LightTable(_Table):
     """A point light in world space (cm), and the weights of the shading terms, as in
-    :class:`Light`, whose defaults these are."""
+    :class:`Light`, whose defaults and bounds these are."""
 
     position: Vector = Light.position
-    ambient: Fraction = Light.ambient
-    diffuse: Fraction = Light.diffuse
-    specular: Fraction = Light.specular
-    shininess: Annotated[Number, Field(ge=1, le=512)] = Light.shininess
+    ambient: Annotated[Number, _within(FRACTION)] = Light.ambient
+    diffuse: Annotated[Number, _within(FRACTION)] = Light.diffuse
+    specular: Annotated[Number, _within(FRACTION)] = Light.specular
+    shininess: Annotated[Number, _within(SHININESS)] = Light.shininess
+
+    @classmethod
+    def of(cls, light: Light) -> LightTable:
+        return cls(**asdict(light))
 
     def light(self) -> Light:
         return Light(**self.model_dump())
 
 
 class RenderTable(_Table):
-    segments: Annotated[int, Strict(), Field(ge=3, le=1024)] = 48
-    shading: Literal["gouraud", "phong"] = "gouraud"
-    ssaa: Annotated[int, Strict(), Field(ge=1, le=4)] = 1
-    muscle_colour: Colour = "#b4483e"
-    bone_colour: Colour = "#e3d9c0"
-    background: Colour = "#12161c"
+    """How the picture is drawn, as in :class:`RenderSettings`, whose defaults and bounds
+    these are."""
+
+    segments: Annotated[int, Strict(), _within(SEGMENTS)] = RenderSettings.segments
+    shading: Shading = RenderSettings.shading
+    ssaa: Annotated[int, Strict(), _within(SUPERSAMPLING)] = RenderSettings.ssaa
+    muscle_colour: Colour = RenderSettings.muscle_colour
+    bone_colour: Colour = RenderSettings.bone_colour
+    background: Colour = RenderSettings.background
+
+    @classmethod
+    def of(cls, settings: RenderSettings) -> RenderTable:
+        return cls(**asdict(settings))
+
+    def render_settings(self) -> RenderSettings:
+        return RenderSettings(**self.model_dump())
 
 
 class ConfigFile(_Table):
@@ -158,16 +195,20 @@ class Config:
 
     path: Path
     arm: Arm
-    view: ViewTable
-    light: LightTable
-    render: RenderTable
+    view: View
+    light: Light
+    render: RenderSettings
     source: str
 
 
 def load_config(path: str | os.PathLike) -> Config:
     """Read and validate a configuration file; raises :class:`ConfigError` saying why not."""
     path = Path(path)
-    source = _read_text(path)
+    return _parsed(path, _read_text(path))
+
+
+def _parsed(path: Path, source: str) -> Config:
+    """The configuration that ``source``, read from ``path``, describes."""
     try:
         data = tomllib.loads(source)
     except tomllib.TOMLDecodeError as error:
@@ -177,7 +218,8 @@ def load_config(path: str | os.PathLike) -> Config:
     except ValidationError as error:
         raise ConfigError(_describe(path, source, error)) from None
     arm = _build_arm(path, source, table)
-    return Config(path, arm, table.view, table.light, table.render, source)
+    return Config(path, arm, table.view.view(), table.light.light(),
+                  table.render.render_settings(), source)
 
 
 def _read_text(path: Path) -> str:
@@ -243,11 +285,12 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
     return arm
 
 
-def _describe(path: Path, source: str, error: ValidationError) -> str:
-    """One line per problem: ``file:line: field.path: what is wrong (found ...)``."""
+def _describe(path: Path, source: str, error: ValidationError, within: tuple = ()) -> str:
+    """One line per problem: ``file:line: field.path: what is wrong (found ...)``; ``within``
+    is the path of the table validated, when it is not the whole file."""
     lines = []
     for problem in error.errors(include_url=False):
-        location = problem["loc"]
+        location = (*within, *problem["loc"])
         kind = problem["type"]
         if kind == "extra_forbidden":
             message = _unknown_key_message(location)
@@ -325,25 +368,31 @@ def _line_of(source: str, location: tuple) -> int | None:
     return None
 
 
-def save_config(config: Config, arm: Arm, view: ViewTable, light: LightTable,
-                render: RenderTable, path: str | os.PathLike | None = None) -> Config:
+def save_config(config: Config, arm: Arm, view: View, light: Light, render: RenderSettings,
+                path: str | os.PathLike | None = None) -> Config:
     """Write ``arm`` and the settings into ``config``'s document and replace the file atomically.
 
     Only values that differ from what the file says (or implies by default) are written, so
     the user's comments, order and layout survive. ``path`` saves a copy elsewhere ("save
-    as"). Returns the configuration as now on disk; raises :class:`FileError` and leaves
-    every file as it was when it cannot write.
+    as"). The new text is read back as :func:`load_config` would read it before anything is
+    written, so a save never leaves a file that does not load. Returns the configuration as
+    now on disk; raises :class:`ConfigError` (the new text would not load) or
+    :class:`FileError` (it cannot be written) and then leaves every file as it was.
     """
     target = Path(path) if path is not None else config.path
     document = tomlkit.parse(config.source)
-    _write_muscle(document, arm)
-    _write_changes(document, "skeleton", SkeletonTable(), SkeletonTable.of(arm.skeleton))
-    _write_changes(document, "view", ViewTable(), view)
-    _write_changes(document, "light", LightTable(), light)
-    _write_changes(document, "render", RenderTable(), render)
-    text = tomlkit.dumps(document)
+    try:
+        _write_muscle(document, arm)
+        _write_changes(target, document, "skeleton", SkeletonTable, arm.skeleton)
+        _write_changes(target, document, "view", ViewTable, view)
+        _write_changes(target, document, "light", LightTable, light)
+        _write_changes(target, document, "render", RenderTable, render)
+        text = tomlkit.dumps(document)
+        saved = _parsed(target, text)
+    except ConfigError as error:
+        raise ConfigError(f"not saved (nothing was written): {error}") from None
     write_atomically(target, text.encode("utf-8"))
-    return load_config(target)
+    return saved
 
 
 def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm) -> None:
@@ -390,10 +439,16 @@ def _update_value(container: Any, key: Any, value: float) -> None:
         container[key] = value
 
 
-def _write_changes(document: tomlkit.TOMLDocument, name: str, default: BaseModel,
-                   value: BaseModel) -> None:
+def _write_changes(path: Path, document: tomlkit.TOMLDocument, name: str, table: type[_Table],
+                   setting: Any) -> None:
+    """Write the fields of ``setting`` that differ from the ``[name]`` table in ``document``."""
+    try:
+        value = table.of(setting)
+    except ValidationError as error:  # a value that bypassed its own checks
+        raise ConfigError(_describe(path, "", error, within=(name,))) from None
+    default = table()
     existing = document.get(name)
-    for field in type(value).model_fields:
+    for field in table.model_fields:
         new = getattr(value, field)
         current = existing.get(field, getattr(default, field)) if existing else getattr(default, field)
         if _same(current, new):

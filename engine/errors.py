@@ -13,6 +13,10 @@ class ConfigError(BicepsError):
     """A configuration file cannot be read, validated or written."""
 
 
+class SettingError(BicepsError):
+    """A view, light or render setting outside its rules: no such setting was made."""
+
+
 class FileError(BicepsError):
     """A file cannot be written; whatever was there before is untouched."""
 

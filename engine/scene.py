@@ -14,34 +14,40 @@ import numpy as np
 
 from biceps.engine import coldstart
 from biceps.engine.arm import Arm
-from biceps.engine.config import Config, LightTable, RenderTable, ViewTable, rgb
+from biceps.engine.config import Config, rgb
 from biceps.engine.mesh import Mesh, arm_parts
 from biceps.engine.render import Renderer
+from biceps.engine.settings import RenderSettings, View
 from biceps.engine.skeleton import Skeleton
-from biceps.engine.transforms import Camera, frame_sphere, model_matrix
+from biceps.engine.transforms import Camera, Light, frame_sphere, model_matrix
 
 
 @dataclass(frozen=True)
 class Scene:
-    """Everything a frame depends on; immutable, so a render thread can hold one safely."""
+    """Everything a frame depends on; immutable, so a render thread can hold one safely.
+
+    Each setting checks its rules when it is made, so ``with_view(scale=-3)`` raises
+    :class:`~engine.errors.SettingError` rather than making a scene that cannot be drawn
+    or saved.
+    """
 
     arm: Arm
-    view: ViewTable
-    light: LightTable
-    render: RenderTable
+    view: View
+    light: Light
+    render: RenderSettings
 
     @classmethod
     def of(cls, config: Config) -> Scene:
         return cls(config.arm, config.view, config.light, config.render)
 
     def with_view(self, **changes) -> Scene:
-        return replace(self, view=self.view.model_copy(update=changes))
+        return replace(self, view=replace(self.view, **changes))
 
     def with_light(self, **changes) -> Scene:
-        return replace(self, light=self.light.model_copy(update=changes))
+        return replace(self, light=replace(self.light, **changes))
 
     def with_render(self, **changes) -> Scene:
-        return replace(self, render=self.render.model_copy(update=changes))
+        return replace(self, render=replace(self.render, **changes))
 
     def with_arm(self, arm: Arm) -> Scene:
         return replace(self, arm=arm)
@@ -103,7 +109,7 @@ class SceneRenderer:
         camera, model = view_camera(scene, width / height)
         return self._renderer.render(
             mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
-            scene.light.light(), width, height, shading=scene.render.shading,
+            scene.light, width, height, shading=scene.render.shading,
             ssaa=scene.render.ssaa, background=rgb(scene.render.background),
         )  # fmt: skip
 

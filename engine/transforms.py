@@ -23,6 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from biceps.engine.settings import Limits, number, point, settle
+
 
 def rotation_x(angle: float) -> np.ndarray:
     """(4, 4) float64: rotate by ``angle`` radians about ``x`` (pitch), ``y`` towards ``z``."""
@@ -159,12 +161,17 @@ class Camera:
         return perspective(math.radians(self.fov_y_deg), aspect, self.near, self.far)
 
 
+FRACTION = Limits(0, 1)
+SHININESS = Limits(1, 512)
+
+
 @dataclass(frozen=True)
 class Light:
     """A white point light fixed in world space (it does not turn with the model).
 
     position: (3,) world space, cm. ambient, diffuse, specular: the weights of the three
-    terms of the lighting model; shininess: the Blinn-Phong exponent.
+    terms of the lighting model; shininess: the Blinn-Phong exponent. A light outside these
+    rules cannot be made (:class:`~engine.errors.SettingError`, see ``engine/settings.py``).
     """
 
     position: tuple[float, float, float] = (60.0, 80.0, 120.0)
@@ -172,6 +179,11 @@ class Light:
     diffuse: float = 0.8
     specular: float = 0.3
     shininess: float = 24.0
+
+    def __post_init__(self) -> None:
+        settle(self, "light", position=point, ambient=number(FRACTION),
+               diffuse=number(FRACTION), specular=number(FRACTION),
+               shininess=number(SHININESS))
 
 
 def frame_camera(bounds_min, bounds_max, aspect: float, fov_y_deg: float = 35.0,

@@ -1,6 +1,8 @@
 """Configuration files: the bundled ones load, bad ones are refused clearly, saving is safe."""
 
+import math
 import stat
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -9,7 +11,7 @@ from click.testing import CliRunner
 
 from biceps.cli import main
 from biceps.engine.config import load_config, save_config
-from biceps.engine.errors import ConfigError, FileError
+from biceps.engine.errors import BicepsError, ConfigError, FileError
 from biceps.engine.config import BUNDLED
 
 INVALID = Path(__file__).resolve().parents[1] / "invalid_configs"
@@ -122,7 +124,7 @@ def test_save_then_load_gives_the_same_model(user_copy):
 
 def test_saving_keeps_the_users_comments_and_layout(user_copy):
     config = load_config(user_copy)
-    _save(config, config.arm.at_length(31.0), view=config.view.model_copy(update={"yaw": 40.0}))
+    _save(config, config.arm.at_length(31.0), view=replace(config.view, yaw=40.0))
     text = user_copy.read_text()
     assert "# A human biceps brachii on the arm skeleton of OpenSim's arm26 model." in text
     assert "upper_arm = 29.1            # humerus, elbow to shoulder" in text
@@ -142,7 +144,7 @@ def test_saving_writes_only_what_differs_from_the_defaults(tmp_path):
     path = tmp_path / "short.toml"
     path.write_text("[muscle]\nlength = 33.0\nradius = [0.5, 2.0, 0.5]\ngrowth = [0, 1, 0]\n")
     config = load_config(path)
-    _save(config, light=config.light.model_copy(update={"position": (1.0, 2.0, 3.0)}))
+    _save(config, light=replace(config.light, position=(1.0, 2.0, 3.0)))
     text = path.read_text()
     assert "[light]\nposition = [1.0, 2.0, 3.0]" in text
     assert "[view]" not in text and "[render]" not in text
@@ -166,6 +168,63 @@ def test_a_failed_save_leaves_the_file_and_no_temporary(user_copy):
     with pytest.raises(FileError, match="cannot write"):
         _save(config, config.arm.at_length(29.0), path=missing_dir)
     assert user_copy.read_text() == before
+    assert [p.name for p in user_copy.parent.iterdir()] == [user_copy.name]
+
+
+def _forged(setting, **fields):
+    """``setting`` with ``fields`` set past its checks, as a bug elsewhere might leave it."""
+    setting = replace(setting)
+    for name, value in fields.items():
+        object.__setattr__(setting, name, value)
+    return setting
+
+
+def _limits_lifted(config):
+    """The arm at 28 cm, shorter than the file's min_length = 30 allows."""
+    return replace(config.arm, min_length=None).at_length(28.0)
+
+
+# What a save must refuse, and what it must say: settings that slipped past their checks,
+# and arms the file cannot hold although each value in them is fine on its own.
+INVALID_SAVES = {
+    "fov 500": (lambda c: {"view": _forged(c.view, fov=500.0, scale=-3.0)},
+                "view.fov: Input should be less than 170 (found 500.0)"),
+    "light at infinity": (lambda c: {"light": _forged(c.light, position=(0.0, 0.0, math.inf))},
+                          "light.position[2]: Input should be a finite number"),
+    "ssaa 9": (lambda c: {"render": _forged(c.render, ssaa=9)},
+               "render.ssaa: Input should be less than or equal to 4 (found 9)"),
+    "unknown shading": (lambda c: {"render": _forged(c.render, shading="flat")},
+                        "render.shading: Input should be 'gouraud' or 'phong' (found 'flat')"),
+    "overdraw, a debugging view": (lambda c: {"render": replace(c.render, shading="overdraw")},
+                                   "render.shading: Input should be 'gouraud' or 'phong'"),
+    "colour": (lambda c: {"render": _forged(c.render, background="red")},
+               "render.background: should be a colour written #rrggbb (found 'red')"),
+    "negative bone": (lambda c: {"arm": replace(c.arm, skeleton=replace(c.arm.skeleton,
+                                                                        forearm=-3.0))},
+                      "skeleton.forearm: Input should be greater than 0 (found -3.0)"),
+    "reversed joint range": (lambda c: {"arm": replace(c.arm, skeleton=replace(
+                                 c.arm.skeleton, min_flexion=100.0, max_flexion=50.0))},
+                             "skeleton.flexion_range: flexion range must satisfy"),
+    "length below the file's min_length": (lambda c: {"arm": _limits_lifted(c)},
+                                           "muscle.length: length 28.00 cm is outside"),
+}
+
+
+@pytest.mark.parametrize("case", INVALID_SAVES)
+@pytest.mark.parametrize("save_as", [False, True], ids=["save", "save as"])
+def test_saving_anything_invalid_leaves_every_file_as_it_was(user_copy, case, save_as):
+    user_copy.write_text(user_copy.read_text().replace("# min_length = 28.0",
+                                                       "min_length = 30.0"))
+    before = user_copy.read_bytes()
+    config = load_config(user_copy)
+    make_changes, message = INVALID_SAVES[case]
+    changes = make_changes(config)
+    target = user_copy.parent / "copy.toml" if save_as else None
+    with pytest.raises(BicepsError) as refusal:
+        _save(config, changes.pop("arm", None), target, **changes)
+    assert str(refusal.value).startswith("not saved (nothing was written): ")
+    assert message in str(refusal.value)
+    assert user_copy.read_bytes() == before
     assert [p.name for p in user_copy.parent.iterdir()] == [user_copy.name]
 
 

@@ -1,0 +1,178 @@
+"""Runtime settings: how the model is viewed and how the picture is rendered, as frozen values
+that check their rules when they are made.
+
+A setting outside its rules cannot exist, whichever way it comes (a file, a key, the command
+line, a script): making one raises :class:`SettingError` naming the field, the value and what
+is allowed. The third setting, the light, is :class:`~engine.transforms.Light`, beside the
+camera the renderer takes with it; it checks itself by the rules here.
+
+Each default and each bound is written once, here (the light's beside the light); the file's
+tables in ``engine/config.py`` take theirs from these, and convert to and from these values.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, fields
+from numbers import Integral, Real
+from typing import Any, Callable, Literal, get_args
+
+from biceps.engine.errors import SettingError
+
+Shading = Literal["gouraud", "phong"]
+"""The shadings a file may name."""
+
+SHADINGS = (*get_args(Shading), "overdraw")
+"""Every shading the renderer draws (``engine/render.py``): also "overdraw", a debugging view
+that counts the triangles on each pixel, which a file cannot name and so cannot be saved."""
+
+COLOUR = "#[0-9a-fA-F]{6}"
+"""A whole colour, ``#rrggbb``, as a regular expression."""
+
+
+@dataclass(frozen=True)
+class Limits:
+    """The numbers a setting allows: ``low`` or more, up to ``high`` if there is one; the
+    ends themselves excluded when ``exclusive``."""
+
+    low: float
+    high: float | None = None
+    exclusive: bool = False
+    unit: str = ""
+
+    def allows(self, value: float) -> bool:
+        if self.exclusive:
+            return value > self.low and (self.high is None or value < self.high)
+        return value >= self.low and (self.high is None or value <= self.high)
+
+    def constraints(self) -> dict[str, float]:
+        """The bounds named ``gt``, ``ge``, ``lt`` and ``le``, as pydantic's ``Field`` wants."""
+        above, below = ("gt", "lt") if self.exclusive else ("ge", "le")
+        return {above: self.low} if self.high is None else {above: self.low, below: self.high}
+
+    def __str__(self) -> str:
+        low, high, unit = self.low, self.high, self.unit
+        if high is None:
+            return f"above {low:g}{unit}" if self.exclusive else f"{low:g}{unit} or more"
+        if self.exclusive:
+            return f"above {low:g} and below {high:g}{unit}"
+        return f"from {low:g} to {high:g}{unit}"
+
+
+Rule = Callable[[str, Any], Any]
+"""Checks the value of the field it is told the name of: returns the value to keep, or raises
+:class:`SettingError`."""
+
+
+def settle(setting: Any, owner: str, **rules: Rule) -> None:
+    """Check every field of the frozen dataclass ``setting`` by its rule (named like the field),
+    and keep what the rule returns: a float for a number, a tuple for a point, so that equal
+    settings compare equal however they were written."""
+    for field in fields(setting):
+        value = rules[field.name](f"{owner}.{field.name}", getattr(setting, field.name))
+        object.__setattr__(setting, field.name, value)
+
+
+def number(limits: Limits | None = None) -> Rule:
+    """A finite number (a bool is not one) within ``limits``."""
+    wanted = f"a finite number {limits}" if limits is not None else "a finite number"
+
+    def check(where: str, value: Any) -> float:
+        if not _is_finite_number(value) or (limits is not None and not limits.allows(value)):
+            raise _refused(where, value, wanted)
+        return float(value)
+
+    return check
+
+
+def integer(limits: Limits) -> Rule:
+    """A whole number (not a bool, nor a float such as 2.0) within ``limits``."""
+
+    def check(where: str, value: Any) -> int:
+        if not isinstance(value, Integral) or isinstance(value, bool) or not limits.allows(value):
+            raise _refused(where, value, f"a whole number {limits}")
+        return int(value)
+
+    return check
+
+
+def point(where: str, value: Any) -> tuple[float, float, float]:
+    """Three finite numbers, x, y and z."""
+    if (not isinstance(value, (tuple, list)) or len(value) != 3
+            or not all(map(_is_finite_number, value))):
+        raise _refused(where, value, "three finite numbers (x, y, z)")
+    return tuple(float(v) for v in value)
+
+
+def one_of(choices: tuple[str, ...]) -> Rule:
+    """One of the words ``choices``."""
+
+    def check(where: str, value: Any) -> str:
+        if not isinstance(value, str) or value not in choices:
+            *others, last = map(repr, choices)
+            raise _refused(where, value, f"{', '.join(others)} or {last}")
+        return value
+
+    return check
+
+
+def colour(where: str, value: Any) -> str:
+    """A colour written ``#rrggbb``."""
+    if not isinstance(value, str) or not re.fullmatch(COLOUR, value):
+        raise _refused(where, value, "a colour written #rrggbb")
+    return value
+
+
+def _is_finite_number(value: Any) -> bool:
+    return isinstance(value, Real) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _refused(where: str, value: Any, wanted: str) -> SettingError:
+    shown = repr(value)
+    if len(shown) > 60:
+        shown = shown[:57] + "..."
+    return SettingError(f"{where} is {shown}: it must be {wanted}")
+
+
+SCALE = Limits(0, exclusive=True)
+FIELD_OF_VIEW = Limits(1, 170, exclusive=True, unit=" degrees")
+
+
+@dataclass(frozen=True)
+class View:
+    """How the model is turned (degrees), scaled and moved (cm, after turning), and the
+    camera's vertical field of view (degrees)."""
+
+    yaw: float = 0.0
+    pitch: float = 0.0
+    roll: float = 0.0
+    scale: float = 1.0
+    offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    fov: float = 35.0
+
+    def __post_init__(self) -> None:
+        settle(self, "view", yaw=number(), pitch=number(), roll=number(), scale=number(SCALE),
+               offset=point, fov=number(FIELD_OF_VIEW))
+
+
+SEGMENTS = Limits(3, 1024)
+SUPERSAMPLING = Limits(1, 4)
+
+
+@dataclass(frozen=True)
+class RenderSettings:
+    """How the picture is drawn: the vertices around each part's axis, the shading model,
+    the supersampling factor (``ssaa`` x ``ssaa`` samples a pixel) and the colours."""
+
+    segments: int = 48
+    shading: str = "gouraud"
+    ssaa: int = 1
+    muscle_colour: str = "#b4483e"
+    bone_colour: str = "#e3d9c0"
+    background: str = "#12161c"
+
+    def __post_init__(self) -> None:
+        settle(self, "render", segments=integer(SEGMENTS), shading=one_of(SHADINGS),
+               ssaa=integer(SUPERSAMPLING), muscle_colour=colour, bone_colour=colour,
+               background=colour)
