@@ -25,6 +25,7 @@ from textual.reactive import var
 from textual.screen import Screen
 
 from biceps.engine import coldstart
+from biceps.configs import FOLDER as BUNDLED_MODELS
 from biceps.engine.config import Config, load_config, save_config
 from biceps.engine.errors import BicepsError
 from biceps.engine.export import check_writable, parse_size, write_png
@@ -235,8 +236,16 @@ class BicepsApp(App[None]):
         if not isinstance(self.screen, HelpScreen):
             self.push_screen(HelpScreen())
 
-    def action_save(self) -> None:
-        self._save()
+    @work
+    async def action_save(self) -> None:
+        await self._save_or_ask()
+
+    async def _save_or_ask(self) -> bool:
+        """Save to the file the model came from; for the bundled model, which is part of
+        the installation (and replaced by the next upgrade), ask where to save a copy."""
+        if _bundled(self.config.path):
+            return await self._save_as()
+        return self._save()
 
     def _save(self, path: Path | None = None) -> bool:
         scene = self.scene
@@ -258,19 +267,25 @@ class BicepsApp(App[None]):
         self.sub_title = config.path.name
 
     def _config_file_field(self) -> Field:
-        return Field("File", str(self.config.path), parse_path, PathSuggester((".toml",)))
+        path = self.config.path
+        if _bundled(path):
+            path = Path.cwd() / path.name  # a copy of one's own, where one works
+        return Field("File", str(path), parse_path, PathSuggester((".toml",)))
 
     @work
     async def action_save_as(self) -> None:
+        await self._save_as()
+
+    async def _save_as(self) -> bool:
         answer = await self.push_screen_wait(
             Prompt("Save as", [self._config_file_field()], accept="Save"))
         if answer is None:
-            return
+            return False
         (path,) = answer
         if os.path.exists(path) and not _same_file(path, self.config.path):
             if not await self._confirm_replace(path):
-                return
-        self._save(path)
+                return False
+        return self._save(path)
 
     @work
     async def action_open(self) -> None:
@@ -345,13 +360,18 @@ class BicepsApp(App[None]):
         question = f"{self.config.path.name} has unsaved edits."
         answer = await self.push_screen_wait(Choice("Unsaved edits", question, answers))
         if answer == "save":
-            return self._save()
+            return await self._save_or_ask()
         return answer == "discard"
 
     async def _confirm_replace(self, path: Path) -> bool:
         answers = [Answer("y", "Replace it", "replace", "error")]
         question = f"{path} already exists."
         return await self.push_screen_wait(Choice("Replace?", question, answers)) == "replace"
+
+
+def _bundled(path: Path) -> bool:
+    """Whether ``path`` is one of the models installed with biceps."""
+    return path.resolve().parent == BUNDLED_MODELS.resolve()
 
 
 def _same_file(path: Path, other: Path) -> bool:

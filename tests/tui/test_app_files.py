@@ -51,6 +51,21 @@ async def test_save_as_writes_another_file_and_works_on_it_from_then_on(biceps, 
     assert config_path.read_text() == original
 
 
+async def test_saving_the_bundled_model_asks_for_a_file_of_ones_own(biceps, tmp_path,
+                                                                     monkeypatch):
+    bundled = BUNDLED / "biceps.toml"
+    original = bundled.read_bytes()
+    monkeypatch.chdir(tmp_path)
+    async with biceps(on=load_config(bundled)) as session:
+        await session.pilot.press("c", "ctrl+s")
+        assert session.app.screen.query_one(Input).value == str(tmp_path / "biceps.toml")
+        await _answer(session, str(tmp_path / "mine.toml"))
+        assert session.app.config.path == tmp_path / "mine.toml"
+        assert not session.app.unsaved
+    assert bundled.read_bytes() == original
+    assert load_config(tmp_path / "mine.toml").arm.length == 32.9
+
+
 async def test_save_as_into_a_missing_directory_says_so_and_keeps_the_edits(biceps, config_path):
     async with biceps() as session:
         await session.pilot.press("c", "ctrl+d")
