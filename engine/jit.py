@@ -9,8 +9,8 @@ Fast-math is on, but only with the flags that cannot change what is drawn:
 - ``contract`` (fused multiply-add), ``arcp`` (``x / y`` as ``x * (1 / y)``) and ``afn``
   (approximate ``sqrt``, ``pow``) change results in the last bits at most. Coverage does
   not depend on them: it is decided by exact integer edge functions on vertex positions
-  snapped once per vertex (see ``engine/raster.py``), so no fast-math flag can open a crack
-  or draw a shared edge twice.
+  snapped once per vertex (see ``engine/raster/coverage.py``), so no fast-math flag can
+  open a crack or draw a shared edge twice.
 - ``nsz`` (ignore the sign of zero) is harmless for depth and colour.
 - Left out: ``nnan`` and ``ninf``, which let the compiler assume there is no NaN or infinity
   and so delete the very tests that keep a NaN vertex or an infinite coordinate from

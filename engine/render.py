@@ -1,6 +1,6 @@
 """Rendering: the :class:`Renderer` owns the buffers and wires the raster kernels together.
 
-A frame is one call of each kernel of ``engine/raster.py``; Python here only composes the
+A frame is one call of each kernel of ``engine/raster/``; Python here only composes the
 4x4 matrices and keeps the buffers, allocated once per size and reused.
 """
 
@@ -109,7 +109,7 @@ class Renderer:
 
     def _transform(self, vertices, normals, albedo, model, view_projection, width, height):
         """The vertex stage: world positions and normals, clip space, screen positions."""
-        # The kernels take per-vertex arrays component-major (see engine/raster.py).
+        # The kernels take per-vertex arrays component-major (see engine/raster/__init__.py).
         np.copyto(self._vertices, np.asarray(vertices).T)
         np.copyto(self._normals, np.asarray(normals).T)
         np.copyto(self._albedo, np.asarray(albedo).T)
