@@ -28,8 +28,8 @@ def _pixel_range(a, b, c, size):
     The centre of pixel p is at ``p ONE + HALF``, so the pixels whose centres lie in
     [low, high] run from ``ceil((low - HALF) / ONE)`` to ``floor((high - HALF) / ONE)``.
     Conditional expressions rather than the builtin ``min`` and ``max``, which numba
-    compiles as functions of their own for each caller (tens of milliseconds apiece of a
-    cold start)."""
+    compiles as functions of their own for each caller, each one more compile on a cold
+    start."""
     low = a if a < b else b
     low = low if low < c else c
     high = a if a > b else b
@@ -128,8 +128,8 @@ def may_cover(x0, y0, x1, y1, x2, y2, width, height):
     """Whether a triangle (fixed point, as in `triangle_spans`) is front-facing and its
     bounding box holds a pixel centre on the screen: the cheap tests that throw out the
     back half of a closed mesh, and the many triangles smaller than a pixel, before setup.
-    Inlined: compiled on its own it had `_pixel_box` compiled a second time for it (0.15 s
-    of a cold start)."""
+    Inlined: compiled on its own, it had numba compile `_pixel_box` a second time for it on
+    every cold start."""
     if (y1 - y0) * (x2 - x0) - (x1 - x0) * (y2 - y0) <= 0:
         return False  # back-facing or degenerate
     first, last, left, right = _pixel_box(x0, y0, x1, y1, x2, y2, width, height)

@@ -90,7 +90,7 @@ def rasterize_gouraud(triangles, screen_xy, screen_z, outcodes, attributes, ligh
     pixels: (3 h w,) uint8 and depths: (h w,) float32, the frame buffers flattened,
     cleared to the background and depth 0; width: w. spans: (2, h) int64 and planes:
     (10, 3) float64 (at least 1 + a rows): scratch, passed in so that the kernel allocates
-    nothing (numba's ``np.empty`` alone costs a cold start about 0.1 s to compile).
+    nothing (numba's ``np.empty`` is a sizeable compile of its own on a cold start).
 
     Triangles with a vertex outside a clipping plane other than the far one are left for
     `clip_triangles`.

@@ -24,8 +24,8 @@ def _channel(value):
     """value clamped to [0, 255]; NaN gives 0 (the comparison fails, as it does with NaN).
 
     Here and below, conditional expressions rather than the builtin ``min`` and ``max``:
-    numba compiles those as functions of their own for each type and each caller, which
-    costs the first, cold run tens of milliseconds apiece."""
+    numba compiles those as functions of their own for each type and each caller, each one
+    more compile on the first, cold run."""
     value = value if value > 0.0 else 0.0
     return value if value < 255.0 else 255.0
 

@@ -23,8 +23,8 @@ def transform_vertices(vertices, normals, model, normal_matrix, world, world_nor
     normal_matrix: (3, 3) float64, the inverse transpose of ``model[:3, :3]``.
     Writes world: (3, n) float64 and world_normals: (3, n) float64, renormalised.
     """
-    # The vertex kernels call no helpers: each compiled function costs tens of milliseconds
-    # of numba's time the first time it runs (see engine/jit.py).
+    # The vertex kernels call no helpers: each function numba compiles lengthens the first,
+    # cold run (see engine/jit.py).
     m00, m01, m02, m03 = model[0, 0], model[0, 1], model[0, 2], model[0, 3]
     m10, m11, m12, m13 = model[1, 0], model[1, 1], model[1, 2], model[1, 3]
     m20, m21, m22, m23 = model[2, 0], model[2, 1], model[2, 2], model[2, 3]
