@@ -205,17 +205,16 @@ def _read_only(array: np.ndarray) -> np.ndarray:
     return view
 
 
-def _lighting(light: Light, camera: Camera) -> np.ndarray:
-    """The rasterize kernels' lighting: (11,) float64, laid out as ``raster.LIGHTING``."""
+def _lighting(light: Light, camera: Camera) -> raster.Lighting:
+    """The rasterize kernels' lighting, every field a float (see ``raster.Lighting``)."""
+    (light_x, light_y, light_z), (eye_x, eye_y, eye_z) = light.position, camera.eye
     specular, shininess = float(light.specular), max(float(light.shininess), 0.0)
-    if specular <= 0.0:
-        threshold = 2.0  # no highlight at all
-    elif shininess == 0.0:
-        threshold = 0.0
-    else:
-        threshold = (0.5 / (255.0 * specular)) ** (1.0 / shininess)
-    return np.array([*light.position, *camera.eye, light.ambient, light.diffuse, specular,
-                     shininess, threshold], dtype=np.float64)
+    return raster.Lighting(
+        light_x=float(light_x), light_y=float(light_y), light_z=float(light_z),
+        eye_x=float(eye_x), eye_y=float(eye_y), eye_z=float(eye_z),
+        ambient=float(light.ambient), diffuse=float(light.diffuse), specular=specular,
+        shininess=shininess, highlight_threshold=raster.highlight_threshold(specular, shininess),
+    )
 
 
 def _normal_matrix(model: np.ndarray) -> np.ndarray:

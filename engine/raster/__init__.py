@@ -42,13 +42,13 @@ from biceps.engine.raster.clipping import (BOTTOM, CLIP_MASK, FAR, INVALID, LEFT
 from biceps.engine.raster.coverage import triangle_spans
 from biceps.engine.raster.draw import rasterize_gouraud, rasterize_overdraw, rasterize_phong
 from biceps.engine.raster.resample import downsample
-from biceps.engine.raster.shading import LIGHTING
+from biceps.engine.raster.shading import Lighting, highlight_threshold
 from biceps.engine.raster.vertex import (light_vertices, phong_vertices, project_vertices,
                                          transform_vertices)
 
 __all__ = [
-    "BOTTOM", "CLIP_MASK", "FAR", "INVALID", "LEFT", "LIGHTING", "MAX_POLYGON", "NEAR", "RIGHT",
-    "TOP", "clip_triangles", "downsample", "light_vertices", "phong_vertices",
-    "project_vertices", "rasterize_gouraud", "rasterize_overdraw", "rasterize_phong",
-    "transform_vertices", "triangle_spans",
+    "BOTTOM", "CLIP_MASK", "FAR", "INVALID", "LEFT", "MAX_POLYGON", "NEAR", "RIGHT", "TOP",
+    "Lighting", "clip_triangles", "downsample", "highlight_threshold", "light_vertices",
+    "phong_vertices", "project_vertices", "rasterize_gouraud", "rasterize_overdraw",
+    "rasterize_phong", "transform_vertices", "triangle_spans",
 ]

@@ -86,7 +86,7 @@ def rasterize_gouraud(triangles, screen_xy, screen_z, outcodes, attributes, ligh
     screen_xy: (2, n) int64, screen_z: (n,) float64, outcodes: (n,) uint8, from
     `project_vertices` (or `clip_triangles`). attributes: (a, n) float64, from
     `light_vertices` (Gouraud, a = 3) or `phong_vertices` (Phong, a = 9); any for overdraw.
-    lighting: (11,) float64 laid out as ``LIGHTING`` (used by Phong).
+    lighting: `Lighting` (used by Phong).
     pixels: (3 h w,) uint8 and depths: (h w,) float32, the frame buffers flattened,
     cleared to the background and depth 0; width: w. spans: (2, h) int64 and planes:
     (10, 3) float64 (at least 1 + a rows): scratch, passed in so that the kernel allocates

@@ -7,16 +7,46 @@ the depth and of the a attributes, which ``engine/raster/draw.py`` sets up per t
 """
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
 from biceps.engine.jit import helper, inline
 
-LIGHTING = ("light x", "light y", "light z", "eye x", "eye y", "eye z",
-            "ambient", "diffuse", "specular", "shininess", "highlight threshold")
-"""The layout of the ``lighting: (11,) float64`` argument of the rasterize kernels. Below
-the highlight threshold, ``(1 / (2 255 specular)) ^ (1 / shininess)``, ``n.h`` gives a
-highlight under half a colour level, so Phong skips its ``pow``."""
+
+class Lighting(NamedTuple):
+    """The rasterize kernels' lighting (see `shade_phong`): a white point light and the eye,
+    world space; the weights of the ambient, diffuse and specular terms; the Blinn-Phong
+    exponent; and the ``n.h`` below which there is no highlight to draw (see
+    `highlight_threshold`).
+
+    Every field a float: numba types the whole as eleven float64, which its cache keeps as
+    it keeps an array's type; an int among them would make another type, and every rasterize
+    kernel would be compiled again for it.
+    """
+
+    light_x: float
+    light_y: float
+    light_z: float
+    eye_x: float
+    eye_y: float
+    eye_z: float
+    ambient: float
+    diffuse: float
+    specular: float
+    shininess: float
+    highlight_threshold: float
+
+
+def highlight_threshold(specular: float, shininess: float) -> float:
+    """The least ``n.h`` whose highlight, ``255 specular (n.h) ^ shininess``, reaches half a
+    colour level: ``(1 / (2 255 specular)) ^ (1 / shininess)``. Below it Phong skips its
+    ``pow``; 2 (beyond any ``n.h``) if there is no highlight at all."""
+    if specular <= 0.0:
+        return 2.0
+    if shininess == 0.0:
+        return 0.0
+    return (0.5 / (255.0 * specular)) ** (1.0 / shininess)
 
 
 @helper
@@ -102,7 +132,7 @@ def shade_phong(pixels, depths, start, end, xc, yc, planes, lighting):
     Synthesized Pictures", 1977) of a white point light.
 
     planes: depth, world position (3), world normal (3), albedo (3) in [0, 255].
-    lighting: (11,) float64, laid out as ``LIGHTING``.
+    lighting: `Lighting`.
     """
     for i in range(start, end):
         x = xc + np.float64(i - start)
@@ -112,17 +142,19 @@ def shade_phong(pixels, depths, start, end, xc, yc, planes, lighting):
         depths[i] = depth
         px, py, pz, nx, ny, nz, red, green, blue = _phong_attributes(planes, x, yc)
         nx, ny, nz = _normalised(nx, ny, nz)
-        lx, ly, lz = _normalised(lighting[0] - px, lighting[1] - py, lighting[2] - pz)
-        vx, vy, vz = _normalised(lighting[3] - px, lighting[4] - py, lighting[5] - pz)
+        lx, ly, lz = _normalised(lighting.light_x - px, lighting.light_y - py,
+                                 lighting.light_z - pz)
+        vx, vy, vz = _normalised(lighting.eye_x - px, lighting.eye_y - py, lighting.eye_z - pz)
         n_dot_l = nx * lx + ny * ly + nz * lz
-        intensity = lighting[6]
+        intensity = lighting.ambient
         highlight = 0.0
         if n_dot_l > 0.0:
-            intensity += lighting[7] * n_dot_l
+            intensity += lighting.diffuse * n_dot_l
             hx, hy, hz = _normalised(lx + vx, ly + vy, lz + vz)
             n_dot_h = nx * hx + ny * hy + nz * hz
-            if n_dot_h > lighting[10]:
-                highlight = 255.0 * lighting[8] * np.float32(n_dot_h) ** np.float32(lighting[9])
+            if n_dot_h > lighting.highlight_threshold:
+                highlight = (255.0 * lighting.specular
+                             * np.float32(n_dot_h) ** np.float32(lighting.shininess))
         offset = np.uint64(3) * i
         pixels[offset] = _byte(red * intensity + highlight)
         pixels[offset + np.uint64(1)] = _byte(green * intensity + highlight)
