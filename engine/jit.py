@@ -9,8 +9,8 @@ Fast-math is on, but only with the flags that cannot change what is drawn:
 - ``contract`` (fused multiply-add), ``arcp`` (``x / y`` as ``x * (1 / y)``) and ``afn``
   (approximate ``sqrt``, ``pow``) change results in the last bits at most. Coverage does
   not depend on them: it is decided by exact integer edge functions on vertex positions
-  snapped once per vertex (see ``engine/raster.py``), so no fast-math flag can open a crack
-  or draw a shared edge twice.
+  snapped once per vertex (see ``engine/raster/coverage.py``), so no fast-math flag can
+  open a crack or draw a shared edge twice.
 - ``nsz`` (ignore the sign of zero) is harmless for depth and colour.
 - Left out: ``nnan`` and ``ninf``, which let the compiler assume there is no NaN or infinity
   and so delete the very tests that keep a NaN vertex or an infinite coordinate from
@@ -40,7 +40,7 @@ row of pixels). Inlining lengthens the first compilation, so it is kept to those
 helper = register_jitable(fastmath=FASTMATH, error_model="numpy")
 """``@helper``: a small function called by kernels and compiled into them, as ``@ngjit`` would
 compile it, but with no dispatcher of its own: no Python entry point to generate, and no
-cache file of its own to write (its machine code is cached with each kernel that calls it).
-Each ``@ngjit`` helper cost 30 to 100 ms of the first, cold run; a ``@helper`` roughly half
-(measured on `engine/raster.py` with an empty NUMBA_CACHE_DIR).
-It stays a plain Python function for Python callers."""
+cache file of its own to write (its machine code is cached with each kernel that calls it),
+which makes it cheaper than an ``@ngjit`` helper on the first, cold run (an empty numba
+cache), where numba's own passes over each function are most of the time. It stays a
+plain Python function for Python callers."""

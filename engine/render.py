@@ -1,6 +1,6 @@
 """Rendering: the :class:`Renderer` owns the buffers and wires the raster kernels together.
 
-A frame is one call of each kernel of ``engine/raster.py``; Python here only composes the
+A frame is one call of each kernel of ``engine/raster/``; Python here only composes the
 4x4 matrices and keeps the buffers, allocated once per size and reused.
 """
 
@@ -109,7 +109,7 @@ class Renderer:
 
     def _transform(self, vertices, normals, albedo, model, view_projection, width, height):
         """The vertex stage: world positions and normals, clip space, screen positions."""
-        # The kernels take per-vertex arrays component-major (see engine/raster.py).
+        # The kernels take per-vertex arrays component-major (see engine/raster/__init__.py).
         np.copyto(self._vertices, np.asarray(vertices).T)
         np.copyto(self._normals, np.asarray(normals).T)
         np.copyto(self._albedo, np.asarray(albedo).T)
@@ -205,17 +205,16 @@ def _read_only(array: np.ndarray) -> np.ndarray:
     return view
 
 
-def _lighting(light: Light, camera: Camera) -> np.ndarray:
-    """The rasterize kernels' lighting: (11,) float64, laid out as ``raster.LIGHTING``."""
+def _lighting(light: Light, camera: Camera) -> raster.Lighting:
+    """The rasterize kernels' lighting, every field a float (see ``raster.Lighting``)."""
+    (light_x, light_y, light_z), (eye_x, eye_y, eye_z) = light.position, camera.eye
     specular, shininess = float(light.specular), max(float(light.shininess), 0.0)
-    if specular <= 0.0:
-        threshold = 2.0  # no highlight at all
-    elif shininess == 0.0:
-        threshold = 0.0
-    else:
-        threshold = (0.5 / (255.0 * specular)) ** (1.0 / shininess)
-    return np.array([*light.position, *camera.eye, light.ambient, light.diffuse, specular,
-                     shininess, threshold], dtype=np.float64)
+    return raster.Lighting(
+        light_x=float(light_x), light_y=float(light_y), light_z=float(light_z),
+        eye_x=float(eye_x), eye_y=float(eye_y), eye_z=float(eye_z),
+        ambient=float(light.ambient), diffuse=float(light.diffuse), specular=specular,
+        shininess=shininess, highlight_threshold=raster.highlight_threshold(specular, shininess),
+    )
 
 
 def _normal_matrix(model: np.ndarray) -> np.ndarray:

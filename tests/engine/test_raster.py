@@ -74,8 +74,8 @@ def draw_on_screen(points, triangles, width, height, *, colours=None,
     colour = np.zeros((height, width, 3), np.uint8)
     depths = np.zeros(height * width, np.float32)  # the far plane
     kernel(np.ascontiguousarray(triangles, dtype=np.int32), xy, z, codes, attributes,
-           np.zeros(11), colour.reshape(-1), depths, width, np.empty((2, height), np.int64),
-           np.empty((10, 3)))
+           raster.Lighting(*[0.0] * 11), colour.reshape(-1), depths, width,
+           np.empty((2, height), np.int64), np.empty((10, 3)))
     return colour
 
 

@@ -22,14 +22,17 @@ ROOT = Path(__file__).resolve().parents[2]
 # In a fresh interpreter, so that no kernel has a version from elsewhere: prepare, then
 # render, and print the versions the frame had to add (none, if prepare made the right ones).
 ADDED_BY_THE_FRAME = """
-import json, sys
+import json, pkgutil, sys
+from importlib import import_module
 from numba.core.registry import CPUDispatcher
 from biceps.engine import raster
 from biceps.engine.config import load_config
 from biceps.engine.render import Renderer
 from biceps.engine.scene import Scene, SceneRenderer
 
-kernels = {name: kernel for name, kernel in vars(raster).items()
+modules = [import_module(f"{raster.__name__}.{module.name}")
+           for module in pkgutil.iter_modules(raster.__path__)]
+kernels = {name: kernel for module in modules for name, kernel in vars(module).items()
            if isinstance(kernel, CPUDispatcher)}
 added = {}
 for shading, ssaa in (("gouraud", 1), ("phong", 1), ("overdraw", 1), ("gouraud", 2)):
