@@ -12,7 +12,7 @@ Conventions (those of ``engine/__init__.py``, and OpenGL's):
   ``[-1, 1]``, ``z = -1`` on the near plane and ``+1`` on the far one.
 - Screen space (``viewport``): ``x`` to the right and ``y`` down in pixels, the top-left
   pixel covering ``[0, 1) x [0, 1)`` (so its centre is at ``(0.5, 0.5)``), and a reversed
-  depth, 1 on the near plane and 0 on the far one (``engine/raster.py`` says why). The
+  depth, 1 on the near plane and 0 on the far one (``engine/raster`` says why). The
   rasterizer applies exactly this mapping.
 """
 
