@@ -1,12 +1,13 @@
-"""The picture: the scene rendered off the UI thread and shown as half-block pixels.
+"""The picture: the scene rendered off the UI thread and put on the terminal by a
+:class:`~tui.encoder.PictureEncoder` (half-block pixels unless told otherwise).
 
-A widget of ``w x h`` cells shows a frame of ``w x 2h`` pixels (cells are about twice as
-tall as wide, so the pixels are about square). One worker thread owns a
-:class:`~engine.scene.SceneRenderer` and serves requests through a :class:`LatestOnly`
-hand-over: however fast keys repeat or the mouse drags, it renders only the newest scene.
-It also turns the frame into lines, and a new frame refreshes only the lines that changed
-(none, if the picture is the same). The captions on the border say how the picture on
-screen was made, so they change with it.
+A widget of ``w x h`` cells shows a frame of ``w x h`` times the encoder's pixels per cell
+(half-blocks: ``w x 2h``, as cells are about twice as tall as wide, so the pixels are about
+square). One worker thread owns a :class:`~engine.scene.SceneRenderer` and serves requests
+through a :class:`LatestOnly` hand-over: however fast keys repeat or the mouse drags, it
+renders only the newest scene. It also has the encoder turn the frame into lines, and a
+new frame refreshes only the lines that changed (none, if the picture is the same). The
+captions on the border say how the picture on screen was made, so they change with it.
 
 The next request is taken only when the :class:`~tui.pacing.Pacer` says the terminal has
 taken the last frame. On a first run the render thread may first wait for a child process
@@ -30,7 +31,8 @@ from textual.widget import Widget
 from biceps.engine.coldstart import Aside
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui.halfblocks import HalfBlocks, Lines
+from biceps.tui.encoder import Picture, PictureEncoder
+from biceps.tui.halfblocks import HalfBlocks
 from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer
 
@@ -42,8 +44,8 @@ DRAW_TRIES = 8  # refreshes to wait for a frame to be written before pacing on r
 class _Request:
     number: int
     scene: Scene
-    width: int  # cells
-    height: int  # cells
+    width: int  # pixels
+    height: int  # pixels
 
 
 class Viewport(Widget, can_focus=True):
@@ -52,11 +54,11 @@ class Viewport(Widget, can_focus=True):
     ALLOW_SELECT = False  # a drag turns the model; it does not select text
 
     class FrameRendered(Message, bubble=False):
-        def __init__(self, number: int, scene: Scene, lines: Lines) -> None:
+        def __init__(self, number: int, scene: Scene, picture: Picture) -> None:
             super().__init__()
             self.number = number
             self.scene = scene
-            self.lines = lines
+            self.picture = picture
 
     class RenderFailed(Message, bubble=False):
         def __init__(self, number: int, reason: str) -> None:
@@ -84,12 +86,15 @@ class Viewport(Widget, can_focus=True):
             super().__init__()
             self.steps = steps
 
-    def __init__(self, pacer: Pacer, kernels: Aside | None, *, id: str | None = None) -> None:
+    def __init__(self, pacer: Pacer, kernels: Aside | None, *, id: str | None = None,
+                 encoder: PictureEncoder | None = None) -> None:
         """``pacer`` says when the next frame may be made; ``kernels``: a child process
-        compiling the kernels a frame runs, to wait for before the first frame."""
+        compiling the kernels a frame runs, to wait for before the first frame; ``encoder``
+        puts frames on the terminal (default: :class:`HalfBlocks`), from the render thread."""
         super().__init__(id=id)
         self._pacer = pacer
         self._kernels = kernels
+        self._encoder = HalfBlocks() if encoder is None else encoder
         self._scene: Scene | None = None
         self._requests: LatestOnly[_Request] = LatestOnly()
         self._requested = 0  # the number of the newest request
@@ -124,21 +129,24 @@ class Viewport(Widget, can_focus=True):
         width, height = self.size
         if self._scene is None or not width or not height:
             return
+        cell = self._encoder.cell
         self._requested += 1
-        self._requests.put(_Request(self._requested, self._scene, width, height))
+        self._requests.put(
+            _Request(self._requested, self._scene, width * cell.width, height * cell.height)
+        )
 
     @work(thread=True, exclusive=True, group="render")
     def _render_frames(self) -> None:
         # Both keep what they need from one frame to the next (buffers, the lines on
-        # screen), so they are this thread's own.
-        renderer, blocks = SceneRenderer(), HalfBlocks()
+        # screen), so they are this thread's own (see PictureEncoder for the exceptions).
+        renderer, encoder = SceneRenderer(), self._encoder
         if self._kernels is not None:
             self._kernels.wait()  # then load from the cache what it compiled
         while (request := self._requests.take()) is not None:
             try:
-                frame = renderer.render(request.scene, request.width, 2 * request.height)
-                lines = blocks.lines(frame)
-                message = self.FrameRendered(request.number, request.scene, lines)
+                frame = renderer.render(request.scene, request.width, request.height)
+                picture = encoder.encode(frame)
+                message = self.FrameRendered(request.number, request.scene, picture)
             except Exception as error:
                 # Whatever goes wrong in one frame, the app and the edits must survive it,
                 # and the next scene may well render: report it and carry on.
@@ -146,10 +154,11 @@ class Viewport(Widget, can_focus=True):
             self.post_message(message)
 
     def on_viewport_frame_rendered(self, message: FrameRendered) -> None:
-        self._strips = message.lines.strips
+        picture = message.picture
+        self._strips = picture.strips
         self._shown = message.number
-        if message.lines.changed:  # (no regions would mean all of them)
-            self.refresh(*(self._rows(y, rows) for y, rows in message.lines.changed))
+        if picture.changed:  # (no regions would mean all of them)
+            self.refresh(*(self._rows(y, rows) for y, rows in picture.changed))
         self._caption(*_view_captions(message.scene))
         self.call_after_refresh(self._when_drawn, DRAW_TRIES)
 
