@@ -1,5 +1,5 @@
 """The viewport works with any picture encoder: frames of its cells times the encoder's cell,
-the encoder's lines on screen."""
+the encoder's lines on screen, its image and its clearing written to the terminal."""
 
 from __future__ import annotations
 
@@ -90,3 +90,15 @@ async def test_frames_are_the_cells_times_the_encoders_cell_and_its_lines_are_sh
         await _shown(app, pilot)
         assert encoder.shapes[-1] == (24, 80, 3)
         assert viewport.render_line(5).cell_length == 40
+
+
+async def test_the_image_is_written_at_the_pictures_corner_and_cleared_at_the_end(
+    config: Config,
+):
+    app = OneViewport(Scene.of(config), Corners(image="<image>", clearing="<clear>"))
+    async with app.run_test(size=(34, 12)) as pilot:
+        await _shown(app, pilot)
+        images = [text for text in app.written if "<image>" in text]
+        assert images == ["\x1b7\x1b[2;3H<image>\x1b8"]  # below and right of the margin
+        assert "<clear>" not in app.written
+    assert "<clear>" in app.written

@@ -5,9 +5,10 @@ A widget of ``w x h`` cells shows a frame of ``w x h`` times the encoder's pixel
 (half-blocks: ``w x 2h``, as cells are about twice as tall as wide, so the pixels are about
 square). One worker thread owns a :class:`~engine.scene.SceneRenderer` and serves requests
 through a :class:`LatestOnly` hand-over: however fast keys repeat or the mouse drags, it
-renders only the newest scene. It also has the encoder turn the frame into lines, and a
-new frame refreshes only the lines that changed (none, if the picture is the same). The
-captions on the border say how the picture on screen was made, so they change with it.
+renders only the newest scene. It also has the encoder turn the frame into lines (and an
+image, for an encoder that sends one), and a new frame refreshes only the lines that
+changed (none, if the picture is the same). The captions on the border say how the picture
+on screen was made, so they change with it.
 
 The next request is taken only when the :class:`~tui.pacing.Pacer` says the terminal has
 taken the last frame. On a first run the render thread may first wait for a child process
@@ -100,6 +101,7 @@ class Viewport(Widget, can_focus=True):
         self._requested = 0  # the number of the newest request
         self._shown = 0  # the number of the request whose frame is on screen
         self._strips: list[Strip] = []
+        self._image = ""  # the image of the frame on screen, until it is written
         self._background = Style()
         self._captions = ("", "")
         self._captioning = False
@@ -121,6 +123,7 @@ class Viewport(Widget, can_focus=True):
         self._requests.close()
         if self._kernels is not None:
             self._kernels.stop()  # the render thread may be waiting for it
+        self._write(self._encoder.clear())
 
     def on_resize(self) -> None:
         self._request_frame()
@@ -156,6 +159,7 @@ class Viewport(Widget, can_focus=True):
     def on_viewport_frame_rendered(self, message: FrameRendered) -> None:
         picture = message.picture
         self._strips = picture.strips
+        self._image = picture.image
         self._shown = message.number
         if picture.changed:  # (no regions would mean all of them)
             self.refresh(*(self._rows(y, rows) for y, rows in picture.changed))
@@ -173,8 +177,21 @@ class Viewport(Widget, can_focus=True):
         # limit.
         if self._repaint_regions and tries > 1:
             self.call_after_refresh(self._when_drawn, tries - 1)
-        else:
-            self._pacer.after_frame(self._requests.done)
+            return
+        if self._image and not self._repaint_regions:
+            # Over its lines once they are out (never over what hides them), and before the
+            # pacer's question, so that the answer waits for the image too.
+            x, y = self.content_region.offset
+            self._write(f"\x1b7\x1b[{y + 1};{x + 1}H{self._image}\x1b8")
+        self._image = ""
+        self._pacer.after_frame(self._requests.done)
+
+    def _write(self, text: str) -> None:
+        # Straight to the driver, after the lines already queued there (as App.bell does).
+        # A private attribute: Textual is pinned to 8.x.
+        driver = self.app._driver
+        if text and driver is not None:
+            driver.write(text)
 
     def on_viewport_render_failed(self, message: RenderFailed) -> None:
         self._requests.done()
