@@ -102,3 +102,14 @@ async def test_the_image_is_written_at_the_pictures_corner_and_cleared_at_the_en
         assert images == ["\x1b7\x1b[2;3H<image>\x1b8"]  # below and right of the margin
         assert "<clear>" not in app.written
     assert "<clear>" in app.written
+
+
+async def test_after_a_failed_frame_the_encoder_starts_afresh(config: Config):
+    encoder = Corners(fail=True)
+    app = OneViewport(Scene.of(config), encoder)
+    async with app.run_test(size=(34, 12)) as pilot:
+        viewport = await _shown(app, pilot)
+        assert encoder.resets == 1
+        viewport.show(app.scene)
+        await _shown(app, pilot)
+        assert viewport.render_line(5) is encoder.last.strips[5]

@@ -152,7 +152,9 @@ class Viewport(Widget, can_focus=True):
                 message = self.FrameRendered(request.number, request.scene, picture)
             except Exception as error:
                 # Whatever goes wrong in one frame, the app and the edits must survive it,
-                # and the next scene may well render: report it and carry on.
+                # and the next scene may well render: report it and carry on. The encoder
+                # may have failed halfway, so what it kept no longer matches the screen.
+                encoder.reset()
                 message = self.RenderFailed(request.number, f"{type(error).__name__}: {error}")
             self.post_message(message)
 
