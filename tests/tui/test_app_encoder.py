@@ -3,6 +3,8 @@ the encoder's lines on screen, its image and its clearing written to the termina
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 from rich.color import Color
 from rich.segment import Segment
@@ -113,3 +115,17 @@ async def test_after_a_failed_frame_the_encoder_starts_afresh(config: Config):
         viewport.show(app.scene)
         await _shown(app, pilot)
         assert viewport.render_line(5) is encoder.last.strips[5]
+
+
+async def test_a_drag_is_measured_in_picture_heights_whatever_the_cell(config: Config):
+    app = OneViewport(Scene.of(config), Corners())
+    messages: list[object] = []
+    async with app.run_test(size=(34, 12), message_hook=messages.append) as pilot:
+        viewport = await _shown(app, pilot)
+        move = SimpleNamespace(button=1, delta_x=5, delta_y=2, ctrl=False, shift=False,
+                               meta=False)
+        viewport.on_mouse_move(move)
+        await pilot.pause()
+    dragged = next(message for message in messages if isinstance(message, Viewport.Dragged))
+    # 5 cells of 2 pixels across, 2 of 10 rows down, in a picture 40 pixels tall.
+    assert (dragged.across, dragged.down) == (5 * 2 / 40, 2 / 10)

@@ -71,7 +71,7 @@ class Viewport(Widget, can_focus=True):
         """The mouse moved with a button held; ``pan`` to move the model, else to turn it.
 
         ``across`` and ``down`` are in picture heights, so a drag of the same length on
-        screen means the same whichever way it goes (a cell is two pixels tall, one wide).
+        screen means the same whichever way it goes (a cell is taller than it is wide).
         """
 
         def __init__(self, across: float, down: float, pan: bool) -> None:
@@ -254,7 +254,10 @@ class Viewport(Widget, can_focus=True):
         # Shift-drag is often taken by the terminal for selecting text, so every modifier
         # and the other buttons pan too.
         pan = event.button != 1 or event.ctrl or event.shift or event.meta
-        self.post_message(self.Dragged(event.delta_x / (2 * rows), event.delta_y / rows, pan))
+        # A cell is cell.width pixels across; the picture is rows * cell.height pixels tall.
+        cell = self._encoder.cell
+        across = event.delta_x * cell.width / (rows * cell.height)
+        self.post_message(self.Dragged(across, event.delta_y / rows, pan))
 
     def on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:
         event.stop()
