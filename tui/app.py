@@ -396,4 +396,4 @@ def run_app(config: Config, colors: str = "auto", fps: float | None = None,
 def _draw_a_frame(config: Config) -> None:
     """What the render thread does, on a tiny frame: so numba compiles (or loads) the very
     kernels it runs."""
-    HalfBlocks().lines(SceneRenderer().render(Scene.of(config), 2, 2))
+    HalfBlocks().encode(SceneRenderer().render(Scene.of(config), 2, 2))

@@ -1,4 +1,5 @@
-"""Pictures as terminal lines: each cell shows two pixels, one above the other.
+"""Pictures as terminal lines: each cell shows two pixels, one above the other. The first
+:class:`~tui.encoder.PictureEncoder`, and the viewport's default.
 
 The upper half block "▀" takes the top pixel as its foreground and the bottom one as its
 background. Cells with two equal pixels are written as a plain space on that background,
@@ -14,15 +15,15 @@ whatever is drawn over the picture.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from rich.color import Color
 from rich.segment import Segment
 from rich.style import Style
+from textual.geometry import Size
 from textual.strip import Strip
 
 from biceps.engine.jit import ngjit
+from biceps.tui.encoder import Picture
 
 UPPER_HALF = "▀"
 BOTTOM = (1 << 24) - 1  # a cell's bottom pixel, as packed below
@@ -100,19 +101,13 @@ def cell_text(cell: int, length: int) -> str:
     return (" " if cell >> 24 == cell & BOTTOM else UPPER_HALF) * length
 
 
-@dataclass(frozen=True)
-class Lines:
-    """A frame as terminal lines, and which of them differ from the frame before."""
-
-    strips: list[Strip]
-    changed: list[tuple[int, int]]  # (first row, number of rows), in order
-
-
 class HalfBlocks:
     """Turns frames into lines, making again only the lines that changed.
 
     Keeps the last frame's cells and lines: not thread-safe, give each thread its own.
     """
+
+    cell = Size(1, 2)
 
     # Enough for every colour of a few frames; a turning model keeps making new ones.
     MAX_STYLES = 1 << 17
@@ -125,7 +120,7 @@ class HalfBlocks:
         self._strips: list[Strip] = []
         self._styles = _Styles()
 
-    def lines(self, frame: np.ndarray) -> Lines:
+    def encode(self, frame: np.ndarray) -> Picture:
         """The lines of ``frame`` ((2 h, w, 3) uint8): h lines of w cells."""
         height, width = frame.shape[0] // 2, frame.shape[1]
         self._cells, self._previous = self._previous, self._cells
@@ -149,7 +144,17 @@ class HalfBlocks:
             for y, (row_changed, strip) in enumerate(zip(changed.tolist(), old))
         ]
         self._strips = strips
-        return Lines(strips, _spans(changed))
+        return Picture(strips, _spans(changed))
+
+
+    def reset(self) -> None:
+        # No cells of the right size to compare with: every row is made again.
+        self._cells = np.zeros((0, 0), np.int64)
+        self._previous = np.zeros((0, 0), np.int64)
+        self._strips = []
+
+    def clear(self) -> str:
+        return ""  # the lines are all there is, and Textual writes them
 
     def _strip(self, cells: np.ndarray, starts: np.ndarray) -> Strip:
         width = len(cells)

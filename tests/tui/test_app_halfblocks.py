@@ -12,7 +12,7 @@ from biceps.tui.halfblocks import UPPER_HALF, HalfBlocks
 
 
 def frame_to_strips(frame: np.ndarray) -> list[Strip]:
-    return HalfBlocks().lines(frame).strips
+    return HalfBlocks().encode(frame).strips
 
 
 def _frame(columns):
@@ -63,7 +63,7 @@ def _pixels_of_output(text: str) -> np.ndarray:
 
 def _decoded(frame: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The frame back from the segments, and back from the codes Textual writes for them."""
-    strips = HalfBlocks().lines(frame).strips
+    strips = HalfBlocks().encode(frame).strips
     console = Console(color_system="truecolor", force_terminal=True)
     written = np.concatenate([_pixels_of_output(strip.render(console)) for strip in strips])
     return _pixels_of_segments(strips), written
@@ -120,7 +120,7 @@ def test_a_256_colour_terminal_gets_palette_codes():
     frame = np.random.default_rng(4).integers(0, 256, (6, 20, 3), dtype=np.uint8)
     console = Console(color_system="256", force_terminal=True)
     # A new encoder, so no style has cached its codes for another colour system.
-    written = "".join(strip.render(console) for strip in HalfBlocks().lines(frame).strips)
+    written = "".join(strip.render(console) for strip in HalfBlocks().encode(frame).strips)
     codes = re.findall(r"\x1b\[([0-9;]*)m", written)
     assert codes
     assert all(re.fullmatch(r"(38;5;\d+;)?48;5;\d+|0", code) for code in codes), codes
@@ -130,8 +130,8 @@ def test_a_256_colour_terminal_gets_palette_codes():
 def test_an_identical_frame_changes_no_line_and_reuses_every_strip():
     frame = np.random.default_rng(5).integers(0, 256, (8, 6, 3), dtype=np.uint8)
     blocks = HalfBlocks()
-    first = blocks.lines(frame)
-    again = blocks.lines(frame.copy())
+    first = blocks.encode(frame)
+    again = blocks.encode(frame.copy())
     assert first.changed == [(0, 4)]
     assert again.changed == []
     assert all(new is old for new, old in zip(again.strips, first.strips))
@@ -140,10 +140,10 @@ def test_an_identical_frame_changes_no_line_and_reuses_every_strip():
 def test_only_the_rows_with_a_changed_pixel_are_new():
     frame = np.zeros((12, 5, 3), np.uint8)
     blocks = HalfBlocks()
-    first = blocks.lines(frame)
+    first = blocks.encode(frame)
     frame[3, 2] = (1, 2, 3)  # row 1 of cells
     frame[8, 0] = frame[11, 4] = (4, 5, 6)  # rows 4 and 5
-    lines = blocks.lines(frame)
+    lines = blocks.encode(frame)
     assert lines.changed == [(1, 1), (4, 2)]
     unchanged = [0, 2, 3]
     assert all(lines.strips[y] is first.strips[y] for y in unchanged)
@@ -152,7 +152,17 @@ def test_only_the_rows_with_a_changed_pixel_are_new():
 
 def test_a_frame_of_another_size_changes_every_line():
     blocks = HalfBlocks()
-    blocks.lines(np.zeros((4, 3, 3), np.uint8))
-    lines = blocks.lines(np.zeros((6, 3, 3), np.uint8))
+    blocks.encode(np.zeros((4, 3, 3), np.uint8))
+    lines = blocks.encode(np.zeros((6, 3, 3), np.uint8))
     assert lines.changed == [(0, 3)]
     assert len(lines.strips) == 3
+
+
+def test_after_a_reset_every_line_is_new():
+    frame = np.random.default_rng(6).integers(0, 256, (8, 6, 3), dtype=np.uint8)
+    blocks = HalfBlocks()
+    blocks.encode(frame)
+    blocks.reset()
+    picture = blocks.encode(frame)
+    assert picture.changed == [(0, 4)]
+    np.testing.assert_array_equal(_pixels_of_segments(picture.strips), frame)

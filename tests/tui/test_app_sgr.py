@@ -84,7 +84,7 @@ def test_a_picture_comes_back_exactly_and_shorter():
     frame[:, :10] = (20, 22, 28)  # a flat background, and a ramp of one colour
     frame[:, 10:14] = np.arange(40, dtype=np.uint8).reshape(20, 2, 1).repeat(2, 1)
     console = Console(color_system="truecolor", force_terminal=True)
-    strips = HalfBlocks().lines(frame).strips
+    strips = HalfBlocks().encode(frame).strips
     written = "".join(f"\x1b[{y + 1};1H" + strip.render(console) for y, strip in enumerate(strips))
     lean = minimized(written)
     np.testing.assert_array_equal(Screen(30, 10).feed(lean).pixels(0, 0, 30, 10), frame)

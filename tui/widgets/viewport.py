@@ -1,12 +1,14 @@
-"""The picture: the scene rendered off the UI thread and shown as half-block pixels.
+"""The picture: the scene rendered off the UI thread and put on the terminal by a
+:class:`~tui.encoder.PictureEncoder` (half-block pixels unless told otherwise).
 
-A widget of ``w x h`` cells shows a frame of ``w x 2h`` pixels (cells are about twice as
-tall as wide, so the pixels are about square). One worker thread owns a
-:class:`~engine.scene.SceneRenderer` and serves requests through a :class:`LatestOnly`
-hand-over: however fast keys repeat or the mouse drags, it renders only the newest scene.
-It also turns the frame into lines, and a new frame refreshes only the lines that changed
-(none, if the picture is the same). The captions on the border say how the picture on
-screen was made, so they change with it.
+A widget of ``w x h`` cells shows a frame of ``w x h`` times the encoder's pixels per cell
+(half-blocks: ``w x 2h``, as cells are about twice as tall as wide, so the pixels are about
+square). One worker thread owns a :class:`~engine.scene.SceneRenderer` and serves requests
+through a :class:`LatestOnly` hand-over: however fast keys repeat or the mouse drags, it
+renders only the newest scene. It also has the encoder turn the frame into lines (and an
+image, for an encoder that sends one), and a new frame refreshes only the lines that
+changed (none, if the picture is the same). The captions on the border say how the picture
+on screen was made, so they change with it.
 
 The next request is taken only when the :class:`~tui.pacing.Pacer` says the terminal has
 taken the last frame.
@@ -28,7 +30,8 @@ from textual.widget import Widget
 
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui.halfblocks import HalfBlocks, Lines
+from biceps.tui.encoder import Picture, PictureEncoder
+from biceps.tui.halfblocks import HalfBlocks
 from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer
 
@@ -40,8 +43,8 @@ DRAW_TRIES = 8  # refreshes to wait for a frame to be written before pacing on r
 class _Request:
     number: int
     scene: Scene
-    width: int  # cells
-    height: int  # cells
+    width: int  # pixels
+    height: int  # pixels
 
 
 class Viewport(Widget, can_focus=True):
@@ -50,11 +53,11 @@ class Viewport(Widget, can_focus=True):
     ALLOW_SELECT = False  # a drag turns the model; it does not select text
 
     class FrameRendered(Message, bubble=False):
-        def __init__(self, number: int, scene: Scene, lines: Lines) -> None:
+        def __init__(self, number: int, scene: Scene, picture: Picture) -> None:
             super().__init__()
             self.number = number
             self.scene = scene
-            self.lines = lines
+            self.picture = picture
 
     class RenderFailed(Message, bubble=False):
         def __init__(self, number: int, reason: str) -> None:
@@ -66,7 +69,7 @@ class Viewport(Widget, can_focus=True):
         """The mouse moved with a button held; ``pan`` to move the model, else to turn it.
 
         ``across`` and ``down`` are in picture heights, so a drag of the same length on
-        screen means the same whichever way it goes (a cell is two pixels tall, one wide).
+        screen means the same whichever way it goes (a cell is taller than it is wide).
         """
 
         def __init__(self, across: float, down: float, pan: bool) -> None:
@@ -82,15 +85,19 @@ class Viewport(Widget, can_focus=True):
             super().__init__()
             self.steps = steps
 
-    def __init__(self, pacer: Pacer, *, id: str | None = None) -> None:
-        """``pacer`` says when the next frame may be made."""
+    def __init__(self, pacer: Pacer, *, id: str | None = None,
+                 encoder: PictureEncoder | None = None) -> None:
+        """``pacer`` says when the next frame may be made; ``encoder`` puts frames on the
+        terminal (default: :class:`HalfBlocks`), from the render thread."""
         super().__init__(id=id)
         self._pacer = pacer
+        self._encoder = HalfBlocks() if encoder is None else encoder
         self._scene: Scene | None = None
         self._requests: LatestOnly[_Request] = LatestOnly()
         self._requested = 0  # the number of the newest request
         self._shown = 0  # the number of the request whose frame is on screen
         self._strips: list[Strip] = []
+        self._image = ""  # the image of the frame on screen, until it is written
         self._background = Style()
         self._captions = ("", "")
         self._captioning = False
@@ -110,6 +117,7 @@ class Viewport(Widget, can_focus=True):
 
     def on_unmount(self) -> None:
         self._requests.close()
+        self._write(self._encoder.clear())
 
     def on_resize(self) -> None:
         self._request_frame()
@@ -118,30 +126,37 @@ class Viewport(Widget, can_focus=True):
         width, height = self.size
         if self._scene is None or not width or not height:
             return
+        cell = self._encoder.cell
         self._requested += 1
-        self._requests.put(_Request(self._requested, self._scene, width, height))
+        self._requests.put(
+            _Request(self._requested, self._scene, width * cell.width, height * cell.height)
+        )
 
     @work(thread=True, exclusive=True, group="render")
     def _render_frames(self) -> None:
         # Both keep what they need from one frame to the next (buffers, the lines on
-        # screen), so they are this thread's own.
-        renderer, blocks = SceneRenderer(), HalfBlocks()
+        # screen), so they are this thread's own (see PictureEncoder for the exceptions).
+        renderer, encoder = SceneRenderer(), self._encoder
         while (request := self._requests.take()) is not None:
             try:
-                frame = renderer.render(request.scene, request.width, 2 * request.height)
-                lines = blocks.lines(frame)
-                message = self.FrameRendered(request.number, request.scene, lines)
+                frame = renderer.render(request.scene, request.width, request.height)
+                picture = encoder.encode(frame)
+                message = self.FrameRendered(request.number, request.scene, picture)
             except Exception as error:
                 # Whatever goes wrong in one frame, the app and the edits must survive it,
-                # and the next scene may well render: report it and carry on.
+                # and the next scene may well render: report it and carry on. The encoder
+                # may have failed halfway, so what it kept no longer matches the screen.
+                encoder.reset()
                 message = self.RenderFailed(request.number, f"{type(error).__name__}: {error}")
             self.post_message(message)
 
     def on_viewport_frame_rendered(self, message: FrameRendered) -> None:
-        self._strips = message.lines.strips
+        picture = message.picture
+        self._strips = picture.strips
+        self._image = picture.image
         self._shown = message.number
-        if message.lines.changed:  # (no regions would mean all of them)
-            self.refresh(*(self._rows(y, rows) for y, rows in message.lines.changed))
+        if picture.changed:  # (no regions would mean all of them)
+            self.refresh(*(self._rows(y, rows) for y, rows in picture.changed))
         self._caption(*_view_captions(message.scene))
         self.call_after_refresh(self._when_drawn, DRAW_TRIES)
 
@@ -156,8 +171,21 @@ class Viewport(Widget, can_focus=True):
         # limit.
         if self._repaint_regions and tries > 1:
             self.call_after_refresh(self._when_drawn, tries - 1)
-        else:
-            self._pacer.after_frame(self._requests.done)
+            return
+        if self._image and not self._repaint_regions:
+            # Over its lines once they are out (never over what hides them), and before the
+            # pacer's question, so that the answer waits for the image too.
+            x, y = self.content_region.offset
+            self._write(f"\x1b7\x1b[{y + 1};{x + 1}H{self._image}\x1b8")
+        self._image = ""
+        self._pacer.after_frame(self._requests.done)
+
+    def _write(self, text: str) -> None:
+        # Straight to the driver, after the lines already queued there (as App.bell does).
+        # A private attribute: Textual is pinned to 8.x.
+        driver = self.app._driver
+        if text and driver is not None:
+            driver.write(text)
 
     def on_viewport_render_failed(self, message: RenderFailed) -> None:
         self._requests.done()
@@ -218,7 +246,10 @@ class Viewport(Widget, can_focus=True):
         # Shift-drag is often taken by the terminal for selecting text, so every modifier
         # and the other buttons pan too.
         pan = event.button != 1 or event.ctrl or event.shift or event.meta
-        self.post_message(self.Dragged(event.delta_x / (2 * rows), event.delta_y / rows, pan))
+        # A cell is cell.width pixels across; the picture is rows * cell.height pixels tall.
+        cell = self._encoder.cell
+        across = event.delta_x * cell.width / (rows * cell.height)
+        self.post_message(self.Dragged(across, event.delta_y / rows, pan))
 
     def on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:
         event.stop()
