@@ -146,7 +146,6 @@ class HalfBlocks:
         self._strips = strips
         return Picture(strips, _spans(changed))
 
-
     def reset(self) -> None:
         # No cells of the right size to compare with: every row is made again.
         self._cells = np.zeros((0, 0), np.int64)
