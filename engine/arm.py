@@ -4,9 +4,15 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+import numpy as np
+
 from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import Muscle
 from biceps.engine.skeleton import ArmPose, Skeleton
+
+HINGE_AXIS = np.array([0.0, 0.0, 1.0])
+"""The elbow's axis in world space: flexion turns the forearm about ``+z``, from ``-y``
+towards ``+x`` (see ``engine/skeleton.py``)."""
 
 
 @dataclass(frozen=True)
@@ -34,6 +40,22 @@ class Arm:
     @property
     def pose(self) -> ArmPose:
         return self.skeleton.pose(self.length)
+
+    @property
+    def moment_arm(self) -> float:
+        """The muscle's moment arm about the elbow (cm), positive for a flexor.
+
+        The moment about the hinge of a unit pull along the muscle's line of action, the
+        straight line from insertion to origin: the perpendicular distance from the elbow's
+        centre to that line. For a straight muscle this equals ``-dL/dtheta``, the length
+        lost per radian of flexion (the tendon-excursion method; An et al. 1984), which is
+        what OpenSim reports for a muscle with no wrapping. Worked out from the pose's
+        points, so it follows wherever the skeleton puts the attachments.
+        """
+        pose = self.pose
+        line = pose.origin - pose.insertion
+        pull = line / np.linalg.norm(line)
+        return float(np.cross(pose.insertion - pose.elbow, pull) @ HINGE_AXIS)
 
     def length_range(self) -> tuple[float, float]:
         """The shortest and longest length (cm): the joint's range and the config's limits."""

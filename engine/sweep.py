@@ -1,0 +1,83 @@
+"""The muscle across the elbow's range: one row of numbers per angle, for tables and plots.
+
+``biceps sweep`` prints these rows and the app's plot panel draws them, so both show the
+same numbers. Each row is the arm put at its angle from the config's arm, exactly as ``info
+--flexion`` puts it, so the two agree to the last bit.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from biceps.engine.arm import Arm
+from biceps.engine.errors import RefusedChange
+
+MOST_ANGLES = 100_000
+"""More rows than any table or plot needs; a step so fine it asks for more is a mistake."""
+
+
+@dataclass(frozen=True)
+class Row:
+    """The arm's numbers at one elbow angle (cm, cm^3, degrees)."""
+
+    flexion: float
+    length: float
+    moment_arm: float
+    volume: float
+    volume_error: float  # relative to the conserved volume
+    max_radius: float
+    girth: float
+    radii: np.ndarray  # (n,) float64, origin to insertion
+
+    @classmethod
+    def of(cls, arm: Arm, flexion: float) -> Row:
+        """The row of ``arm`` put at ``flexion`` degrees, which it keeps as asked (the
+        angle worked back from the length may differ in the last bit)."""
+        muscle = arm.muscle
+        return cls(flexion, muscle.length, arm.moment_arm, muscle.volume,
+                   muscle.volume_error, muscle.max_radius, muscle.girth, muscle.radii)
+
+    def record(self) -> dict[str, Any]:
+        """The row as plain data, named as ``info --json`` names the same numbers."""
+        return {
+            "flexion_deg": self.flexion,
+            "length_cm": self.length,
+            "moment_arm_cm": self.moment_arm,
+            "volume_cm3": self.volume,
+            "volume_relative_error": self.volume_error,
+            "max_radius_cm": self.max_radius,
+            "girth_cm": self.girth,
+            "radii_cm": self.radii.tolist(),
+        }
+
+
+def angles(start: float, stop: float, step: float) -> list[float]:
+    """``start``, ``start + step``, ... up to ``stop`` (degrees), downwards if ``stop`` is
+    below ``start``; ``stop`` itself is included when a step lands on it.
+
+    Each angle is ``start + k * step``, not a running sum, so no rounding builds up and a
+    row's angle can be typed back into ``info --flexion`` as printed.
+    """
+    if not (math.isfinite(step) and step > 0):
+        raise RefusedChange(f"the step must be above 0 degrees, got {step:g}")
+    span = abs(stop - start)
+    # A hair of tolerance, so that 0 to 1 by 0.1 ends on 1 despite 10 * 0.1 rounding.
+    count = math.floor(span / step * (1 + 1e-12)) + 1
+    if count > MOST_ANGLES:
+        raise RefusedChange(
+            f"a step of {step:g} degrees from {start:g} to {stop:g} makes {count} rows; "
+            f"at most {MOST_ANGLES} are allowed, so take a larger step"
+        )
+    direction = 1.0 if stop >= start else -1.0
+    return [start + direction * k * step for k in range(count)]
+
+
+def sweep(arm: Arm, flexions: list[float]) -> list[Row]:
+    """The arm's numbers at each of ``flexions`` (degrees); raises :class:`RefusedChange`,
+    before any row is made, if one is outside what the arm allows."""
+    arms = [arm.at_flexion(flexion) for flexion in flexions]
+    return [Row.of(posed, flexion) for posed, flexion in zip(arms, flexions)]

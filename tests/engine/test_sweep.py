@@ -1,0 +1,72 @@
+"""The moment arm and the sweep across the elbow's range."""
+
+import numpy as np
+import pytest
+
+from biceps.engine.arm import Arm
+from biceps.engine.config import DEFAULT_CONFIG, load_config
+from biceps.engine.errors import RefusedChange
+from biceps.engine.muscle import Muscle
+from biceps.engine.skeleton import Skeleton
+from biceps.engine.sweep import MOST_ANGLES, angles, sweep
+
+ARM = load_config(DEFAULT_CONFIG).arm
+
+
+def test_a_3_4_5_triangle_has_the_moment_arm_of_its_height():
+    # Origin 4 cm up the upper arm, insertion 3 cm down the forearm, muscle 5 cm: the elbow
+    # is at 90 degrees, and the distance from the right angle to the hypotenuse is 3 * 4 / 5.
+    muscle = Muscle.of([0.1, 0.2, 0.1], [0.0, 0.1, 0.0], 5.0)
+    arm = Arm(muscle, Skeleton(origin_to_elbow=4.0, elbow_to_insertion=3.0))
+    assert arm.moment_arm == pytest.approx(2.4, rel=1e-14)
+
+
+@pytest.mark.parametrize("flexion", [10.0, 45.0, 90.0, 110.0, 130.0])
+def test_the_moment_arm_is_the_length_lost_per_radian_of_flexion(flexion):
+    skeleton, step = ARM.skeleton, 1e-5
+    shortened = skeleton.length_at(flexion - step) - skeleton.length_at(flexion + step)
+    assert ARM.at_flexion(flexion).moment_arm == pytest.approx(
+        shortened / np.radians(2 * step), rel=1e-7)
+
+
+def test_a_straight_arm_gives_the_muscle_no_leverage_and_flexion_gives_a_flexor_some():
+    assert ARM.at_flexion(0.0).moment_arm == pytest.approx(0.0, abs=1e-12)
+    assert ARM.at_flexion(1.0).moment_arm > 0
+
+
+def test_angles_end_on_the_last_step_without_rounding_build_up():
+    tenths = angles(0.0, 1.0, 0.1)
+    assert len(tenths) == 11 and tenths[-1] == pytest.approx(1.0)
+    assert tenths[3] == 3 * 0.1  # start + k * step, not a running sum
+    assert angles(0.0, 130.0, 10.0) == [10.0 * k for k in range(14)]
+    assert angles(0.0, 25.0, 10.0) == [0.0, 10.0, 20.0]
+
+
+def test_angles_walk_down_when_the_last_is_below_the_first():
+    assert angles(90.0, 60.0, 10.0) == [90.0, 80.0, 70.0, 60.0]
+
+
+@pytest.mark.parametrize(("step", "message"), [
+    (0.0, "the step must be above 0 degrees"),
+    (-5.0, "the step must be above 0 degrees"),
+    (float("nan"), "the step must be above 0 degrees"),
+    (1e-6, f"at most {MOST_ANGLES} are allowed"),
+])
+def test_angles_refuse_a_step_that_is_no_step_or_far_too_fine(step, message):
+    with pytest.raises(RefusedChange, match=message):
+        angles(0.0, 130.0, step)
+
+
+def test_a_sweep_row_holds_the_arm_at_its_angle():
+    (row,) = sweep(ARM, [90.0])
+    arm = ARM.at_flexion(90.0)
+    assert row.flexion == 90.0
+    assert row.length == arm.length and row.moment_arm == arm.moment_arm
+    assert np.array_equal(row.radii, arm.muscle.radii)
+    assert row.girth == pytest.approx(2 * np.pi * row.max_radius)
+    assert row.volume_error < 1e-12
+
+
+def test_a_sweep_past_the_joint_is_refused():
+    with pytest.raises(RefusedChange, match="outside the joint's range"):
+        sweep(ARM, [0.0, 90.0, 140.0])
