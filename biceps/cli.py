@@ -1,7 +1,7 @@
 """The ``biceps`` command: the app by default, and headless subcommands.
 
-``biceps [CONFIG]`` opens the terminal app; ``biceps info``, ``snapshot`` and
-``export-mesh`` work with no terminal at all. Each command imports what it needs inside
+``biceps [CONFIG]`` opens the terminal app; ``biceps info``, ``sweep``, ``snapshot``,
+``animate`` and ``export-mesh`` work with no terminal at all. Each command imports what it needs inside
 itself: Textual only for the app, numba only where a picture is rendered, and nothing heavy
 for ``--help``, so every command starts as fast as its work allows.
 
@@ -11,13 +11,16 @@ written) ends the process with exit code 2 and one clear message on stderr.
 
 from __future__ import annotations
 
+import csv
 import functools
 import gc
+import io
 import json
 import math
 import sys
+from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, Iterator
 
 import click
 
@@ -26,6 +29,7 @@ from biceps.engine.errors import BicepsError
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
+    from biceps.engine.movie import Progress
     from biceps.engine.scene import Scene
 
 
@@ -164,6 +168,42 @@ def info(config: Path, length: float | None, flexion: float | None, as_json: boo
     )
 
 
+@main.command()
+@config_argument
+@click.option("--from", "start", type=FINITE, help="First elbow flexion, degrees (default: "
+              "the joint's least).")
+@click.option("--to", "stop", type=FINITE, help="Last elbow flexion, degrees (default: the "
+              "joint's most).")
+@click.option("--step", type=FINITE, default=10.0, show_default=True, help="Degrees between rows.")
+@click.option("--csv", "form", flag_value="csv", default=True, help="Comma-separated (default).")
+@click.option("--json", "form", flag_value="json", help="A JSON list of rows.")
+@_refusals_exit_2
+def sweep(config: Path, start: float | None, stop: float | None, step: float, form: str) -> None:
+    """One row per elbow angle: length, flexion, moment arm, volume and its error, largest
+    radius, girth and every radius. Numbers are exact: the shortest text that reads back as
+    the same double."""
+    from biceps.engine.config import load_config
+    from biceps.engine.sweep import angles, sweep as sweep_arm
+
+    arm = load_config(config).arm
+    skeleton = arm.skeleton
+    start = skeleton.min_flexion if start is None else start
+    stop = skeleton.max_flexion if stop is None else stop
+    records = [row.record() for row in sweep_arm(arm, angles(start, stop, step))]
+    if form == "json":
+        click.echo(json.dumps(records, indent=2))
+        return
+    radii = len(records[0]["radii_cm"])
+    columns = [name for name in records[0] if name != "radii_cm"]
+    table = io.StringIO()
+    writer = csv.writer(table, lineterminator="\n")
+    # repr (which csv uses for a float) is the shortest form that reads back exactly.
+    writer.writerow([*columns, *(f"radius_{i}_cm" for i in range(1, radii + 1))])
+    for record in records:
+        writer.writerow([*(record[name] for name in columns), *record["radii_cm"]])
+    click.echo(table.getvalue(), nl=False)
+
+
 def describe(arm: Arm) -> dict[str, Any]:
     """The facts ``info`` prints, as plain data."""
     muscle = arm.muscle
@@ -277,6 +317,64 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: boo
         ) from None
     write_png(output, frame)
     click.echo(f"wrote {output} ({size[0]}x{size[1]})", err=True)
+
+
+@main.command()
+@config_argument
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False, path_type=Path),
+              help="The file to write: .gif, .apng, .webp or .mp4 (MP4 needs biceps[video]).")
+@click.option("--size", default="640x360", show_default=True, callback=_parse_size,
+              metavar="WxH", help="Picture size in pixels.")
+@click.option("--from", "start", type=FINITE,
+              help="Elbow flexion of the first frame, degrees (default: the joint's least).")
+@click.option("--to", "stop", type=FINITE,
+              help="Elbow flexion at the far end, degrees (default: the joint's most).")
+@click.option("--frames", type=click.IntRange(2, 10_000), default=60, show_default=True,
+              help="Frames in the file; a bounce needs an even number.")
+@click.option("--fps", type=FINITE, default=25.0, show_default=True,
+              help="Frames a second, 1 to 60 (a GIF: at most 50).")
+@click.option("--loop/--bounce", "loop", default=False,
+              help="Play from --from to --to and start again, or go there and back "
+              "(default: bounce).")
+@view_options
+@_refusals_exit_2
+def animate(config: Path, output: Path, size: tuple[int, int], start: float | None,
+            stop: float | None, frames: int, fps: float, loop: bool, **overrides: Any) -> None:
+    """Write the flex cycle of CONFIG as a GIF, APNG, WebP or MP4 animation."""
+    from biceps.engine.animate import FlexCycle, check_cycle, render_cycle
+    from biceps.engine.movie import check_animation, write_animation
+
+    check_animation(output, *size, fps)
+    scene = posed_scene(config, None, None, **overrides)
+    skeleton = scene.arm.skeleton
+    cycle = FlexCycle(skeleton.min_flexion if start is None else start,
+                      skeleton.max_flexion if stop is None else stop, frames, bounce=not loop)
+    check_cycle(scene, cycle, *size)
+    if _own_process():
+        from biceps.engine.coldstart import prepare_kernels
+
+        prepare_kernels(scene.render.shading, scene.render.ssaa)  # forks: see coldstart
+    try:
+        with _progress_bar("rendering", len(cycle.poses())) as progress:
+            pictures = render_cycle(scene, cycle, *size, progress=progress)
+        with _progress_bar("encoding ", frames) as progress:
+            write_animation(output, pictures, fps, progress=progress)
+    except MemoryError:
+        raise BicepsError(f"not enough memory for {frames} frames of {size[0]}x{size[1]}; "
+                          "try fewer --frames, a smaller --size or --ssaa") from None
+    click.echo(f"wrote {output} ({size[0]}x{size[1]}, {frames} frames at {fps:g} a second)",
+               err=True)
+
+
+@contextmanager
+def _progress_bar(label: str, total: int) -> Iterator[Progress]:
+    """A progress bar on stderr when it is a terminal, none when it is not (piped, or a
+    log): the context gives the function to tell ``(done, total)``."""
+    if not sys.stderr.isatty():
+        yield lambda done, total: None
+        return
+    with click.progressbar(length=total, label=label, file=sys.stderr, show_pos=True) as bar:
+        yield lambda done, total: bar.update(done - bar.pos)
 
 
 @main.command("export-mesh")

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import os
 import pkgutil
+import select
 import subprocess
 import sys
 import sysconfig
@@ -61,6 +63,7 @@ def test_no_engine_module_imports_a_terminal_library_or_the_app():
     ["--help"],
     ["info"],
     ["info", "--flexion", "90", "--json"],
+    ["sweep", "--json"],
 ])
 def test_commands_that_draw_nothing_import_no_numba(argv):
     assert _imported_after(argv, "numba", "llvmlite", "textual") == []
@@ -76,6 +79,46 @@ def test_snapshot_runs_without_importing_textual_or_rich(tmp_path):
     argv = ["snapshot", str(DEFAULT_CONFIG), "-o", str(out), "--size", "64x48"]
     assert _imported_after(argv, "textual", "rich", "biceps.tui") == []
     assert out.exists()
+
+
+def test_animate_runs_without_importing_textual_or_rich(tmp_path):
+    out = tmp_path / "cycle.gif"
+    argv = ["animate", "-o", str(out), "--size", "64x36", "--frames", "4"]
+    assert _imported_after(argv, "textual", "rich", "biceps.tui", "av") == []
+    assert out.exists()
+
+
+def test_animate_shows_its_progress_on_a_terminal_and_none_when_piped(tmp_path):
+    command = [sys.executable, "-m", "biceps", "animate", "--size", "64x36", "--frames", "8"]
+    piped = subprocess.run([*command, "-o", str(tmp_path / "piped.gif")], capture_output=True,
+                           text=True, timeout=300)
+    assert piped.returncode == 0, piped.stderr
+    assert piped.stderr.splitlines() == [f"wrote {tmp_path / 'piped.gif'} (64x36, 8 frames "
+                                         "at 25 a second)"]
+    master, slave = os.openpty()
+    try:
+        process = subprocess.run([*command, "-o", str(tmp_path / "shown.gif")],
+                                 stdout=subprocess.PIPE, stderr=slave, timeout=300)
+        os.close(slave)
+        shown = _read_all(master).decode()
+    finally:
+        os.close(master)
+    assert process.returncode == 0
+    assert "rendering" in shown and "5/5" in shown  # 5 poses: out in 5, back through 3
+    assert "encoding" in shown and "8/8" in shown
+
+
+def _read_all(master: int) -> bytes:
+    output = bytearray()
+    while select.select([master], [], [], 0.5)[0]:
+        try:
+            chunk = os.read(master, 1 << 16)
+        except OSError:  # the other side has closed
+            break
+        if not chunk:
+            break
+        output += chunk
+    return bytes(output)
 
 
 @pytest.mark.parametrize("name", ["binary_junk.toml", "broken_toml.toml", "unknown_key.toml"])
