@@ -170,10 +170,10 @@ def info(config: Path, length: float | None, flexion: float | None, as_json: boo
 
 @main.command()
 @config_argument
-@click.option("--from", "start", type=FINITE, help="First elbow flexion, degrees (default: "
-              "the joint's least).")
-@click.option("--to", "stop", type=FINITE, help="Last elbow flexion, degrees (default: the "
-              "joint's most).")
+@click.option("--from", "start", type=FINITE,
+              help="First elbow flexion, degrees (default: the least the arm allows).")
+@click.option("--to", "stop", type=FINITE,
+              help="Last elbow flexion, degrees (default: the most the arm allows).")
 @click.option("--step", type=FINITE, default=10.0, show_default=True, help="Degrees between rows.")
 @click.option("--csv", "form", flag_value="csv", default=True, help="Comma-separated (default).")
 @click.option("--json", "form", flag_value="json", help="A JSON list of rows.")
@@ -186,9 +186,7 @@ def sweep(config: Path, start: float | None, stop: float | None, step: float, fo
     from biceps.engine.sweep import angles, sweep as sweep_arm
 
     arm = load_config(config).arm
-    skeleton = arm.skeleton
-    start = skeleton.min_flexion if start is None else start
-    stop = skeleton.max_flexion if stop is None else stop
+    start, stop = _or_the_whole_range(arm, start, stop)
     records = [row.record() for row in sweep_arm(arm, angles(start, stop, step))]
     if form == "json":
         click.echo(json.dumps(records, indent=2))
@@ -202,6 +200,14 @@ def sweep(config: Path, start: float | None, stop: float | None, step: float, fo
     for record in records:
         writer.writerow([*(record[name] for name in columns), *record["radii_cm"]])
     click.echo(table.getvalue(), nl=False)
+
+
+def _or_the_whole_range(arm: Arm, start: float | None, stop: float | None) -> tuple[float, float]:
+    """``--from`` and ``--to``, each defaulting to its end of the flexions the arm allows."""
+    from biceps.engine.sweep import flexion_range
+
+    least, most = flexion_range(arm)
+    return least if start is None else start, most if stop is None else stop
 
 
 def describe(arm: Arm) -> dict[str, Any]:
@@ -326,9 +332,10 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: boo
 @click.option("--size", default="640x360", show_default=True, callback=_parse_size,
               metavar="WxH", help="Picture size in pixels.")
 @click.option("--from", "start", type=FINITE,
-              help="Elbow flexion of the first frame, degrees (default: the joint's least).")
+              help="Elbow flexion of the first frame, degrees (default: the least the arm "
+              "allows).")
 @click.option("--to", "stop", type=FINITE,
-              help="Elbow flexion at the far end, degrees (default: the joint's most).")
+              help="Elbow flexion at the far end, degrees (default: the most the arm allows).")
 @click.option("--frames", type=click.IntRange(2, 10_000), default=60, show_default=True,
               help="Frames in the file; a bounce needs an even number.")
 @click.option("--fps", type=FINITE, default=25.0, show_default=True,
@@ -346,9 +353,7 @@ def animate(config: Path, output: Path, size: tuple[int, int], start: float | No
 
     check_animation(output, *size, fps)
     scene = posed_scene(config, None, None, **overrides)
-    skeleton = scene.arm.skeleton
-    cycle = FlexCycle(skeleton.min_flexion if start is None else start,
-                      skeleton.max_flexion if stop is None else stop, frames, bounce=not loop)
+    cycle = FlexCycle(*_or_the_whole_range(scene.arm, start, stop), frames, bounce=not loop)
     check_cycle(scene, cycle, *size)
     if _own_process():
         from biceps.engine.coldstart import prepare_kernels

@@ -55,12 +55,33 @@ class Row:
         }
 
 
+def flexion_range(arm: Arm) -> tuple[float, float]:
+    """The least and the most elbow flexion (degrees) the arm allows: the joint's range, or
+    less where the config limits the muscle's length.
+
+    An angle worked back from a length limit can land a rounding error beyond it, where
+    :meth:`Arm.at_flexion` refuses it; such an end is moved in until it is accepted.
+    """
+    skeleton = arm.skeleton
+    shortest, longest = arm.length_range()
+    joint_shortest, joint_longest = skeleton.length_range()
+    least = skeleton.min_flexion if longest == joint_longest else skeleton.flexion(longest)
+    most = skeleton.max_flexion if shortest == joint_shortest else skeleton.flexion(shortest)
+    while skeleton.length_at(least) > longest:
+        least = float(np.nextafter(least, most))
+    while skeleton.length_at(most) < shortest:
+        most = float(np.nextafter(most, least))
+    return least, most
+
+
 def angles(start: float, stop: float, step: float) -> list[float]:
     """``start``, ``start + step``, ... up to ``stop`` (degrees), downwards if ``stop`` is
-    below ``start``; ``stop`` itself is included when a step lands on it.
+    below ``start``; ``stop`` itself ends the list when a step lands on it.
 
     Each angle is ``start + k * step``, not a running sum, so no rounding builds up and a
-    row's angle can be typed back into ``info --flexion`` as printed.
+    row's angle can be typed back into ``info --flexion`` as printed. A last step that
+    lands within a rounding error of ``stop`` gives ``stop`` itself (``3 * 0.1`` is
+    ``0.30000000000000004``), which may be the end of the joint's range.
     """
     if not (math.isfinite(step) and step > 0):
         raise RefusedChange(f"the step must be above 0 degrees, got {step:g}")
@@ -73,7 +94,10 @@ def angles(start: float, stop: float, step: float) -> list[float]:
             f"at most {MOST_ANGLES} are allowed, so take a larger step"
         )
     direction = 1.0 if stop >= start else -1.0
-    return [start + direction * k * step for k in range(count)]
+    out = [start + direction * k * step for k in range(count)]
+    if abs(out[-1] - stop) <= 1e-9 * step:
+        out[-1] = stop
+    return out
 
 
 def sweep(arm: Arm, flexions: list[float]) -> list[Row]:

@@ -72,3 +72,18 @@ def test_a_sweep_that_cannot_be_made_prints_no_row(args, message):
     assert result.exit_code == 2
     assert message in result.stderr
     assert result.stdout == ""
+
+
+def test_with_length_limits_in_the_config_the_sweep_and_the_cycle_keep_within_them(
+        config_path, tmp_path):
+    text = config_path.read_text()
+    assert "# min_length = 28.0" in text and "# max_length = 35.0" in text
+    config_path.write_text(text.replace("# min_length", "min_length")
+                           .replace("# max_length", "max_length"))
+    result = run("sweep", config_path, "--step", 1)
+    assert result.exit_code == 0, result.output
+    lengths = [float(row["length_cm"]) for row in csv.DictReader(io.StringIO(result.stdout))]
+    assert lengths[0] == pytest.approx(35.0) and lengths[-1] >= 28.0
+    out = tmp_path / "cycle.apng"
+    result = run("animate", config_path, "-o", out, "--size", "64x36", "--frames", 4)
+    assert result.exit_code == 0, result.output

@@ -1,14 +1,18 @@
 """The moment arm and the sweep across the elbow's range."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from biceps.engine.arm import Arm
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import Muscle
 from biceps.engine.skeleton import Skeleton
-from biceps.engine.sweep import MOST_ANGLES, angles, sweep
+from biceps.engine.sweep import MOST_ANGLES, angles, flexion_range, sweep
 
 ARM = load_config(DEFAULT_CONFIG).arm
 
@@ -42,6 +46,12 @@ def test_angles_end_on_the_last_step_without_rounding_build_up():
     assert angles(0.0, 25.0, 10.0) == [0.0, 10.0, 20.0]
 
 
+def test_angles_end_exactly_on_the_last_angle_when_a_step_lands_there():
+    assert 3 * 0.1 > 0.3
+    assert angles(0.0, 0.3, 0.1) == [0.0, 0.1, 0.2, 0.3]
+    assert angles(0.0, 130.0, 130.0 / 120)[-1] == 130.0
+
+
 def test_angles_walk_down_when_the_last_is_below_the_first():
     assert angles(90.0, 60.0, 10.0) == [90.0, 80.0, 70.0, 60.0]
 
@@ -70,3 +80,20 @@ def test_a_sweep_row_holds_the_arm_at_its_angle():
 def test_a_sweep_past_the_joint_is_refused():
     with pytest.raises(RefusedChange, match="outside the joint's range"):
         sweep(ARM, [0.0, 90.0, 140.0])
+
+
+def test_the_flexion_range_is_the_joints_unless_the_config_limits_the_length():
+    assert flexion_range(ARM) == (0.0, 130.0)
+    limited = replace(ARM, min_length=29.0, max_length=34.0)
+    least, most = flexion_range(limited)
+    assert least == pytest.approx(ARM.skeleton.flexion(34.0))
+    assert most == pytest.approx(ARM.skeleton.flexion(29.0))
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.floats(27.5, 35.5), st.floats(0.1, 5.0))
+def test_both_ends_of_the_flexion_range_are_reachable(longest, span):
+    limited = replace(ARM, min_length=longest - span, max_length=longest)
+    for flexion in flexion_range(limited):
+        assert limited.at_flexion(flexion).length == pytest.approx(
+            limited.skeleton.length_at(flexion))
