@@ -53,9 +53,12 @@ from biceps.tui.screens.choice import Answer, Choice
 from biceps.tui.screens.help import HelpScreen
 from biceps.tui.screens.main import MainScreen
 from biceps.tui.screens.prompt import Field, Prompt
+from biceps.tui.screens.record import RecordPrompt, as_recording
 from biceps.tui.sgr import lean
 from biceps.tui.suggest import PathSuggester
 from biceps.tui.widgets.node_table import NodeTable
+from biceps.tui.widgets.plots import Plots
+from biceps.tui.widgets.recorder import Recorder, Recording
 from biceps.tui.widgets.viewport import Viewport
 
 # A drag across the picture's full height turns the model half round, or moves it by about
@@ -99,6 +102,8 @@ class BicepsApp(App[None]):
         Binding("g", "switch_shading", "Shading: Gouraud or Phong", show=False),
         Binding("m", "switch_antialiasing", "Anti-aliasing on or off", show=False),
         Binding("e", "export", "Export"),
+        Binding("p", "toggle_plots", "Plots on or off", show=False),
+        Binding("v", "record", "Record the flex cycle", show=False),
         Binding("ctrl+s", "save", "Save"),
         Binding("ctrl+d", "save_as", "Save as", show=False),
         Binding("ctrl+o", "open", "Open", show=False),
@@ -120,6 +125,7 @@ class BicepsApp(App[None]):
         self._export_path = f"{config.path.stem}.png"
         self._export_size = "1920x1080"
         self._last_export: Path | None = None
+        self._last_recording: Recording | None = None
         self._notified_until: dict[str, float] = {}
 
     def get_default_screen(self) -> Screen:
@@ -339,6 +345,28 @@ class BicepsApp(App[None]):
             return
         self.call_from_thread(self.notify, reason, title="Not exported", severity="error",
                               markup=False)
+
+    def action_toggle_plots(self) -> None:
+        self.screen_stack[0].query_one(Plots).toggle_class("-shown")
+
+    @work
+    async def action_record(self) -> None:
+        recorder = self.screen_stack[0].query_one(Recorder)
+        if recorder.busy is not None:
+            self._refuse(f"Still recording {recorder.busy.path}; wait for it to finish")
+            return
+        default = Path(f"{self.config.path.stem}-flex.gif")
+        answer = await self.push_screen_wait(
+            RecordPrompt(self.scene, default, self._last_recording))
+        if answer is None:
+            return
+        recording = as_recording(*answer)
+        last = self._last_recording
+        replacing = recording.path.exists() and (last is None or recording.path != last.path)
+        if replacing and not await self._confirm_replace(recording.path):
+            return
+        self._last_recording = recording
+        recorder.record(self.scene, recording)
 
     @work
     async def action_quit(self) -> None:

@@ -1,4 +1,5 @@
-"""The main screen: the picture, and beside it the numbers and the node table."""
+"""The main screen: the picture, and beside it the numbers and the node table; below, when
+asked for, the plots, and while one is written, a recording's progress."""
 
 from __future__ import annotations
 
@@ -12,6 +13,8 @@ from biceps.engine.arm import Arm
 from biceps.engine.scene import Scene
 from biceps.tui.pacing import Pacer
 from biceps.tui.widgets.node_table import NodeTable
+from biceps.tui.widgets.plots import Plots
+from biceps.tui.widgets.recorder import Recorder
 from biceps.tui.widgets.stats import Stats
 from biceps.tui.widgets.viewport import Viewport
 
@@ -33,6 +36,8 @@ class MainScreen(Screen[None]):
             with Vertical(id="side"):
                 yield Stats(id="stats")
                 yield NodeTable(id="nodes")
+        yield Plots(id="plots")
+        yield Recorder(id="recorder")
         width, height = SMALLEST_USEFUL
         yield Static(
             f"This terminal is too small for biceps.\n"
@@ -56,6 +61,7 @@ class MainScreen(Screen[None]):
             self._arm = scene.arm
             self.query_one(Stats).show(scene.arm)
             self.query_one(NodeTable).show(scene.arm.muscle)
+            self.query_one(Plots).show(scene.arm)
 
     def _show_file(self) -> None:
         self.query_one(Stats).border_title = self.app.sub_title + (

@@ -1,0 +1,93 @@
+"""The plot panel: shown and hidden by a key, and following every change at once."""
+
+import numpy as np
+import pytest
+from textual_plotext import PlotextPlot
+
+from biceps.engine.sweep import flexion_range
+from biceps.tui.widgets.plots import Plots
+from biceps.tui.widgets.viewport import Viewport
+
+
+# The order the curves plot draws its lines in.
+LENGTH, GIRTH, MOMENT_ARM, LENGTH_NOW, GIRTH_NOW, MOMENT_ARM_NOW = range(6)
+
+
+def _lines(session, plot_id: str):
+    """What the plot draws: its lines as (x, y) lists, where its vertical marks are, and its
+    axes' limits."""
+    monitor = session.app.screen.query_one(f"#{plot_id}", PlotextPlot).plt.monitor
+    return list(zip(monitor.x, monitor.y)), monitor.vcoord[0], monitor.ylim
+
+
+async def test_p_shows_the_plots_under_the_picture_and_hides_them_again(biceps):
+    async with biceps(size=(100, 30)) as session:
+        plots = session.app.screen.query_one(Plots)
+        viewport = session.app.screen.query_one(Viewport)
+        alone = viewport.size.height
+        assert not plots.display or plots.size.height == 0
+        await session.pilot.press("p")
+        await session.settle()
+        assert plots.has_class("-shown") and plots.size.height >= 10
+        assert viewport.size.height < alone
+        assert plots.region.y > viewport.region.y
+        await session.pilot.press("p")
+        await session.settle()
+        assert viewport.size.height == alone
+
+
+async def test_the_profile_and_the_mark_follow_a_contraction_at_once(biceps):
+    async with biceps() as session:
+        await session.pilot.press("p", "C", "C")
+        await session.pilot.pause()
+        arm = session.app.scene.arm
+        muscle = arm.muscle
+        (rest, now), _, _ = _lines(session, "profile")
+        assert now == (muscle.positions.tolist(), muscle.radii.tolist())
+        assert rest[1] == muscle.reference_radii.tolist()
+        curves, marks, _ = _lines(session, "curves")
+        assert marks == [arm.flexion]
+        flexions, lengths = curves[LENGTH]
+        assert flexions[0] == 0.0 and flexions[-1] == 130.0
+        assert lengths[0] == pytest.approx(35.6) and lengths[-1] == pytest.approx(27.05, abs=0.01)
+        assert curves[LENGTH_NOW] == ([arm.flexion], [arm.length])
+        assert curves[GIRTH_NOW] == ([arm.flexion], [muscle.girth])
+        assert curves[MOMENT_ARM_NOW] == ([arm.flexion], [arm.moment_arm])
+
+
+async def test_the_axes_stay_put_while_the_muscle_contracts(biceps):
+    async with biceps() as session:
+        await session.pilot.press("p")
+        await session.pilot.pause()
+        before = _lines(session, "profile")[2], _lines(session, "curves")[2]
+        await session.pilot.press("C", "C", "C")
+        await session.pilot.pause()
+        assert (_lines(session, "profile")[2], _lines(session, "curves")[2]) == before
+
+
+async def test_an_edited_node_sweeps_the_curves_again(biceps):
+    async with biceps() as session:
+        await session.pilot.press("p")
+        await session.pilot.pause()
+        girth_before = _lines(session, "curves")[0][GIRTH][1]
+        await session.pilot.press("tab", "n")  # a node after the first, halfway to the next
+        await session.pilot.pause()
+        arm = session.app.scene.arm
+        assert arm.muscle.node_count == 16
+        girth_after = _lines(session, "curves")[0][GIRTH][1]
+        assert girth_after != girth_before
+        least, most = flexion_range(arm)
+        assert girth_after[-1] == pytest.approx(arm.at_flexion(most).muscle.girth)
+        (rest, now), _, _ = _lines(session, "profile")
+        assert len(now[0]) == 16 and np.allclose(rest[1], now[1])  # the edit is the new rest
+
+
+async def test_a_terminal_too_small_for_the_layout_hides_the_plots_too(biceps):
+    async with biceps(size=(50, 12)) as session:
+        await session.pilot.press("p")
+        await session.settle()
+        plots = session.app.screen.query_one(Plots)
+        assert plots.has_class("-shown") and plots.region.height == 0
+        await session.pilot.resize_terminal(100, 30)
+        await session.settle()
+        assert plots.region.height >= 10
