@@ -10,7 +10,7 @@ from biceps.tui.widgets.viewport import Viewport
 
 
 # The order the curves plot draws its lines in.
-LENGTH, GIRTH, MOMENT_ARM, LENGTH_NOW, GIRTH_NOW, MOMENT_ARM_NOW = range(6)
+GIRTH, GIRTH_NOW, MOMENT_ARM, MOMENT_ARM_NOW, LENGTH, LENGTH_NOW = range(6)
 
 
 def _lines(session, plot_id: str):

@@ -103,15 +103,12 @@ class Plots(Horizontal):
         plt.clear_data()
         flexions = curves.column("flexion")
         plt.vline(arm.flexion, color=rgb(MARK))
-        plt.plot(flexions, curves.column("length"), marker="hd", color=rgb(LENGTH))
-        for name, colour in (("girth", GIRTH), ("moment_arm", MOMENT_ARM)):
-            plt.plot(flexions, curves.column(name), marker="hd", color=rgb(colour),
-                     yside="right")
         now = {"length": arm.length, "girth": arm.muscle.girth, "moment_arm": arm.moment_arm}
-        plt.scatter([arm.flexion], [now["length"]], marker="●", color=rgb(LENGTH))
-        for name, colour in (("girth", GIRTH), ("moment_arm", MOMENT_ARM)):
-            plt.scatter([arm.flexion], [now[name]], marker="●", color=rgb(colour),
-                        yside="right")
+        # The length last, so that where the lines cross it is drawn over the others.
+        for name, colour, side in (("girth", GIRTH, "right"), ("moment_arm", MOMENT_ARM, "right"),
+                                   ("length", LENGTH, "left")):
+            plt.plot(flexions, curves.column(name), marker="hd", color=rgb(colour), yside=side)
+            plt.scatter([arm.flexion], [now[name]], marker="●", color=rgb(colour), yside=side)
         plt.xlim(flexions[0], flexions[-1])
         lengths = curves.column("length")
         plt.ylim(min(lengths) / MARGIN, max(lengths) * MARGIN, yside="left")
