@@ -1,9 +1,10 @@
 """The ``biceps`` command: the app by default, and headless subcommands.
 
 ``biceps [CONFIG]`` opens the terminal app; ``biceps info``, ``sweep``, ``snapshot``,
-``animate`` and ``export-mesh`` work with no terminal at all. Each command imports what it needs inside
-itself: Textual only for the app, numba only where a picture is rendered, and nothing heavy
-for ``--help``, so every command starts as fast as its work allows.
+``animate`` and ``export-mesh`` work with no terminal at all. Each command imports what it
+needs inside itself: Textual only for the app, numba only where a picture is rendered, PyAV
+only for an MP4, and nothing heavy for ``--help``, so every command starts as fast as its
+work allows.
 
 Every deliberate refusal (a bad config, an impossible length, a file that cannot be
 written) ends the process with exit code 2 and one clear message on stderr.

@@ -27,7 +27,7 @@ GIF_MOST_FPS = 50.0
 """A GIF counts time in hundredths of a second, and browsers play a delay below 2 of them
 as 10: faster than 50 frames a second a GIF plays slower, not faster."""
 
-WEBP_QUALITY = 90  # lossy: a third of a GIF's size, and no palette banding
+WEBP_QUALITY = 90  # lossy: the default cycle in 143 KB against the GIF's 198, and no palette
 MP4_CODEC = "libx264"  # H.264, which every player plays
 MP4_CRF = 18  # x264's constant quality: about what the eye cannot tell from the frames
 BT709 = 1  # FFmpeg's number for ITU-R BT.709 colour (primaries, transfer and matrix alike)
@@ -114,7 +114,7 @@ def _shared_palette(frames: list[np.ndarray], tell: Progress) -> list[Image.Imag
             quantized[id(frame)] = Image.fromarray(frame, "RGB").quantize(
                 palette=palette, dither=Image.Dither.NONE)
         pictures.append(quantized[id(frame)])
-        tell(done - 1, len(frames))
+        tell(done - 1, len(frames))  # the last counts once the whole file is encoded
     return pictures
 
 

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 from textual_plotext import PlotextPlot
 
+from biceps.engine.config import load_config
 from biceps.engine.sweep import flexion_range
 from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.viewport import Viewport
@@ -91,3 +92,15 @@ async def test_a_terminal_too_small_for_the_layout_hides_the_plots_too(biceps):
         await session.pilot.resize_terminal(100, 30)
         await session.settle()
         assert plots.region.height >= 10
+
+
+async def test_limits_that_leave_one_length_plot_one_point(biceps, config_path):
+    text = config_path.read_text().replace("length = 33.0", "length = 30.0")
+    config_path.write_text(text.replace("# min_length = 28.0", "min_length = 30.0")
+                           .replace("# max_length = 35.0", "max_length = 30.0"))
+    async with biceps(on=load_config(config_path)) as session:
+        await session.pilot.press("p", "c")
+        await session.settle()
+        curves, marks, _ = _lines(session, "curves")
+        assert curves[LENGTH] == ([session.app.scene.arm.flexion], [30.0])
+        assert any("shortest" in warning for warning in session.warnings)

@@ -46,6 +46,8 @@ class _Curves:
     @classmethod
     def of(cls, arm: Arm) -> _Curves:
         least, most = flexion_range(arm)
+        if least == most:  # limits in the config that leave one length: one point
+            return cls(sweep(arm, [least]))
         return cls(sweep(arm, angles(least, most, (most - least) / (CURVE_POINTS - 1))))
 
     def column(self, name: str) -> list[float]:
@@ -109,7 +111,8 @@ class Plots(Horizontal):
                                    ("length", LENGTH, "left")):
             plt.plot(flexions, curves.column(name), marker="hd", color=rgb(colour), yside=side)
             plt.scatter([arm.flexion], [now[name]], marker="●", color=rgb(colour), yside=side)
-        plt.xlim(flexions[0], flexions[-1])
+        if flexions[-1] > flexions[0]:
+            plt.xlim(flexions[0], flexions[-1])
         lengths = curves.column("length")
         plt.ylim(min(lengths) / MARGIN, max(lengths) * MARGIN, yside="left")
         plt.ylim(0.0, RIGHT_HEADROOM * max(curves.column("girth")), yside="right")
