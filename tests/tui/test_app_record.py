@@ -7,6 +7,8 @@ import pytest
 from textual.widgets import Input
 
 from biceps.engine import movie
+from biceps.engine.config import load_config
+from biceps.engine.sweep import flexion_range
 from biceps.tui.screens.record import RecordPrompt
 from biceps.tui.widgets.recorder import Recorder
 from decode import decoded
@@ -129,3 +131,22 @@ async def test_the_dialog_remembers_the_last_recording(biceps, tmp_path):
         await session.pilot.pause()
         values = [box.value for box in session.app.screen.query(Input)]
         assert values == [str(tmp_path / "cycle.webp"), "64x36", "0", "130", "4", "25", "loop"]
+
+
+async def test_a_range_limited_by_the_config_is_offered_whole_and_accepted(biceps, config_path,
+                                                                        tmp_path):
+    text = config_path.read_text()
+    config_path.write_text(text.replace("# min_length = 28.0", "min_length = 28.0")
+                           .replace("# max_length = 35.0", "max_length = 35.0"))
+    async with biceps(on=load_config(config_path)) as session:
+        await session.pilot.press("v")
+        await session.pilot.pause()
+        boxes = list(session.app.screen.query(Input))
+        least, most = flexion_range(session.app.scene.arm)
+        assert (float(boxes[2].value), float(boxes[3].value)) == (least, most)
+        boxes[0].value, boxes[1].value = str(tmp_path / "limited.apng"), "64x36"
+        await session.pilot.press("enter")
+        await session.pilot.pause()
+        await _recorded(session)
+        assert session.warnings == []
+    assert len(decoded(tmp_path / "limited.apng")) == 60

@@ -47,6 +47,13 @@ def parse_motion(text: str) -> bool:
     return MOTIONS[motion]
 
 
+def _exactly(angle: float) -> str:
+    """``130`` for 130.0, but every digit of an end worked back from a length limit, which
+    rounded to six digits could fall outside the range and be refused."""
+    short = f"{angle:g}"
+    return short if float(short) == angle else repr(angle)
+
+
 def as_recording(path: Path, size: tuple[int, int], start: float, end: float, frames: int,
                  fps: float, bounce: bool) -> Recording:
     """The dialog's values as a :class:`Recording`; raises :class:`BicepsError` if the cycle
@@ -67,8 +74,8 @@ class RecordPrompt(Prompt):
         fields = [
             Field("File", str(last.path), parse_path, PathSuggester(ANIMATION_FORMATS)),
             Field("Size in pixels", f"{last.width}x{last.height}", parse_size),
-            Field("From, degrees", f"{cycle.start:g}", parse_number),
-            Field("To, degrees", f"{cycle.end:g}", parse_number),
+            Field("From, degrees", _exactly(cycle.start), parse_number),
+            Field("To, degrees", _exactly(cycle.end), parse_number),
             Field("Frames", str(cycle.frames), parse_frames),
             Field("Frames a second", f"{last.fps:g}", parse_number),
             Field("Bounce or loop", "bounce" if cycle.bounce else "loop", parse_motion),
