@@ -29,6 +29,7 @@ from biceps.engine.settings import (
     COLOUR,
     FIELD_OF_VIEW,
     SCALE,
+    Graphics,
     SEGMENTS,
     SUPERSAMPLING,
     Limits,
@@ -167,6 +168,7 @@ class RenderTable(_Table):
     muscle_colour: Colour = RenderSettings.muscle_colour
     bone_colour: Colour = RenderSettings.bone_colour
     background: Colour = RenderSettings.background
+    graphics: Graphics = RenderSettings.graphics
 
     @classmethod
     def of(cls, settings: RenderSettings) -> RenderTable:

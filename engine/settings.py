@@ -27,6 +27,11 @@ SHADINGS = (*get_args(Shading), "overdraw")
 """Every shading the renderer draws (``engine/render.py``): also "overdraw", a debugging view
 that counts the triangles on each pixel, which a file cannot name and so cannot be saved."""
 
+Graphics = Literal["halfblocks", "auto", "kitty", "sixel", "iterm"]
+"""How the picture reaches the terminal (``tui/detect.py``): half-block characters, which
+every terminal shows; one of the protocols for real pixels; or ``auto``, the best the
+terminal answers that it has."""
+
 COLOUR = "#[0-9a-fA-F]{6}"
 """A whole colour, ``#rrggbb``, as a regular expression."""
 
@@ -163,7 +168,8 @@ SUPERSAMPLING = Limits(1, 4)
 @dataclass(frozen=True)
 class RenderSettings:
     """How the picture is drawn: the vertices around each part's axis, the shading model,
-    the supersampling factor (``ssaa`` x ``ssaa`` samples a pixel) and the colours."""
+    the supersampling factor (``ssaa`` x ``ssaa`` samples a pixel), the colours, and how
+    the app sends it to the terminal (``graphics``)."""
 
     segments: int = 48
     shading: str = "gouraud"
@@ -171,8 +177,9 @@ class RenderSettings:
     muscle_colour: str = "#b4483e"
     bone_colour: str = "#e3d9c0"
     background: str = "#12161c"
+    graphics: str = "halfblocks"
 
     def __post_init__(self) -> None:
         settle(self, "render", segments=integer(SEGMENTS), shading=one_of(SHADINGS),
                ssaa=integer(SUPERSAMPLING), muscle_colour=colour, bone_colour=colour,
-               background=colour)
+               background=colour, graphics=one_of(get_args(Graphics)))

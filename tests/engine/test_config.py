@@ -20,6 +20,8 @@ INVALID = Path(__file__).resolve().parents[1] / "invalid_configs"
 INVALID_CASES = {
     "all_zero_growth.toml": ":3: muscle.nodes: at least one node needs a growth above 0",
     "bad_colour.toml": ":6: render.muscle_colour: should be a colour written #rrggbb (found 'red')",
+    "bad_graphics.toml": (":6: render.graphics: Input should be 'halfblocks', 'auto', 'kitty',"
+                          " 'sixel' or 'iterm' (found 'png')"),
     "bad_shading.toml": ":6: render.shading: Input should be 'gouraud' or 'phong' (found 'flat')",
     "binary_junk.toml": "not a text file",
     "boolean_scale.toml": ":6: view.scale: Input should be a valid number (found True)",

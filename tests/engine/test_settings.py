@@ -60,6 +60,8 @@ RENDER_REFUSES = [
     ("bone_colour", "#12345", "a colour written #rrggbb"),
     ("background", "#12161c\n", "a colour written #rrggbb"),
     ("background", "#gg0000", "a colour written #rrggbb"),
+    ("graphics", "png", "'halfblocks', 'auto', 'kitty', 'sixel' or 'iterm'"),
+    ("graphics", None, "'halfblocks', 'auto', 'kitty', 'sixel' or 'iterm'"),
 ]
 REFUSALS = ([(View, "view", *case) for case in VIEW_REFUSES]
             + [(Light, "light", *case) for case in LIGHT_REFUSES]
@@ -163,7 +165,7 @@ def test_a_table_left_empty_is_the_default_setting(kind):
 @pytest.mark.parametrize("setting", [
     View(yaw=-25.0, scale=1.3, offset=(1.0, -2.0, 0.5), fov=60.0),
     Light(position=(-80.0, 40.0, 60.0), shininess=512.0),
-    RenderSettings(segments=3, shading="phong", ssaa=4, background="#000000"),
+    RenderSettings(segments=3, shading="phong", ssaa=4, background="#000000", graphics="sixel"),
 ])
 def test_a_setting_comes_back_from_its_table_unchanged(setting):
     table = TABLES[type(setting)].of(setting)
