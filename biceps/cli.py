@@ -55,6 +55,7 @@ class _FiniteFloat(click.ParamType):
 FINITE = _FiniteFloat()
 
 USAGE_ERROR = 2
+GRAPHICS = ["auto", "halfblocks", "kitty", "sixel", "iterm"]  # as engine/settings.py's Graphics
 
 
 class _AppByDefault(click.Group):
@@ -130,15 +131,45 @@ def main() -> None:
     help="Most frames a second (default: as fast as the terminal takes them, up to "
     "Textual's 60, which TEXTUAL_FPS changes).",
 )
+@click.option(
+    "--graphics",
+    type=click.Choice(GRAPHICS),
+    default=None,
+    help="How the picture reaches the terminal: half-block characters, real pixels in one "
+    "of three protocols, or auto, the best the terminal answers it has (default: the "
+    "config's render.graphics, halfblocks). See biceps doctor.",
+)
+@click.option(
+    "--pixel-scale",
+    type=_FiniteFloat(0.1, 1),
+    default=1.0,
+    show_default=True,
+    help="Real pixels (kitty, iterm): draw this fraction of the terminal's pixels each way "
+    "and let the terminal scale the picture up, for a slow link.",
+)
 @_refusals_exit_2
-def app(config: Path, colors: str, fps: int | None) -> None:
+def app(config: Path, colors: str, fps: int | None, graphics: str | None,
+        pixel_scale: float) -> None:
     """Open the terminal app on CONFIG (default: configs/biceps.toml)."""
     from biceps.engine.config import load_config
 
     loaded = load_config(config)  # fail here, before the terminal switches screens
     from biceps.tui.app import run_app
 
-    run_app(loaded, colors=colors, fps=fps, compile_aside=_own_process())
+    run_app(loaded, colors=colors, fps=fps, compile_aside=_own_process(), graphics=graphics,
+            pixel_scale=pixel_scale)
+
+
+@main.command()
+@click.option("--graphics", type=click.Choice(GRAPHICS), default="auto", show_default=True,
+              help="The choice to explain, as the app would take it.")
+def doctor(graphics: str) -> None:
+    """Ask this terminal what it can show, and say what the app would use and why."""
+    from biceps.tui import detect
+
+    answers, place = detect.ask(), detect.Place.here()
+    click.echo(f"biceps doctor: --graphics {graphics}")
+    click.echo(detect.report(graphics, answers, place, detect.choose(graphics, answers, place)))
 
 
 @main.command()
@@ -290,19 +321,28 @@ def posed_scene(config_path: Path, length: float | None, flexion: float | None,
               help="The PNG file to write.")
 @click.option("--size", default="1920x1080", show_default=True, callback=_parse_size,
               metavar="WxH", help="Picture size in pixels.")
-@click.option("--ansi", is_flag=True,
+@click.option("--ansi", "printed", flag_value="ansi",
               help="Print the picture to this terminal as half-block pixels instead.")
+@click.option("--kitty", "printed", flag_value="kitty",
+              help="Print it in the kitty graphics protocol.")
+@click.option("--sixel", "printed", flag_value="sixel", help="Print it as sixel.")
+@click.option("--iterm", "printed", flag_value="iterm", help="Print it as an iTerm2 image.")
 @pose_options
 @view_options
 @_refusals_exit_2
-def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: bool,
+def snapshot(config: Path, output: Path | None, size: tuple[int, int], printed: str | None,
              length: float | None, flexion: float | None, **overrides: Any) -> None:
-    """Render CONFIG to a PNG file, with no terminal needed."""
+    """Render CONFIG to a PNG file, with no terminal needed, or print it to this one.
+
+    --kitty, --sixel and --iterm print a picture as wide as the terminal in its own pixels
+    (as --ansi does in half-blocks), in that protocol.
+    """
     from biceps.engine.export import check_writable, write_png
     from biceps.engine.scene import SceneRenderer
 
-    if ansi == (output is not None):
-        raise click.UsageError("give -o FILE.png, or --ansi to print to the terminal")
+    if (printed is None) == (output is None):
+        raise click.UsageError("give -o FILE.png, or one of --ansi, --kitty, --sixel and "
+                               "--iterm to print to the terminal")
     if output is not None:
         check_writable(output, ".png")
     scene = posed_scene(config, length, flexion, **overrides)
@@ -310,10 +350,15 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int], ansi: boo
         from biceps.engine.coldstart import prepare_kernels
 
         prepare_kernels(scene.render.shading, scene.render.ssaa)  # forks: see coldstart
-    if ansi:
+    if printed == "ansi":
         from biceps.tui.ansi import print_picture  # rich, only for this mode
 
         print_picture(lambda width, height: SceneRenderer().render(scene, width, height))
+        return
+    if printed is not None:
+        from biceps.tui.printed import print_image
+
+        print_image(printed, lambda width, height: SceneRenderer().render(scene, width, height))
         return
     try:
         frame = SceneRenderer().render(scene, *size)

@@ -16,7 +16,9 @@ from time import monotonic
 from typing import Callable
 
 import textual.constants
+from rich.console import RenderableType
 from textual import events, on, work
+from textual._compositor import CompositorUpdate
 from textual.app import App
 from textual.binding import Binding
 from textual.driver import Driver
@@ -45,9 +47,11 @@ from biceps.tui.changes import (
     with_shading_switched,
     zoomed,
 )
+from biceps.tui import detect
 from biceps.tui.commands import KeyCommands
-from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.encoder import PictureEncoder
 from biceps.tui.pacing import Pacer, cursor_question
+from biceps.tui.pixels import encoder_for
 from biceps.tui.parse import parse_path
 from biceps.tui.screens.choice import Answer, Choice
 from biceps.tui.screens.help import HelpScreen
@@ -115,11 +119,16 @@ class BicepsApp(App[None]):
     scene: var[Scene] = var(None)
     unsaved: var[bool] = var(False)
 
-    def __init__(self, config: Config, fps: float | None = None) -> None:
+    def __init__(self, config: Config, fps: float | None = None,
+                 encoder: PictureEncoder | None = None, notice: str | None = None) -> None:
         """``fps``: the most frames a second the picture is redrawn at (None: no cap but
-        the terminal's pace and Textual's own limit)."""
+        the terminal's pace and Textual's own limit); ``encoder``: how the picture reaches
+        the terminal (default: half-blocks); ``notice``: said once the app is up (what the
+        terminal could show, see tui/detect.py)."""
         super().__init__()
         self.pacer = Pacer(self._ask_cursor_position, self.set_timer, fps)
+        self._encoder = encoder
+        self._notice = notice
         self._adopt(config, Scene.of(config))
         self.set_reactive(BicepsApp.scene, self._saved)
         self._export_path = f"{config.path.stem}.png"
@@ -129,7 +138,7 @@ class BicepsApp(App[None]):
         self._notified_until: dict[str, float] = {}
 
     def get_default_screen(self) -> Screen:
-        return MainScreen(self.pacer)
+        return MainScreen(self.pacer, self._encoder)
 
     def get_driver_class(self) -> type[Driver]:
         # Textual's own driver, sending only the colour codes that change (tui/sgr.py).
@@ -142,6 +151,16 @@ class BicepsApp(App[None]):
         # (gc.freeze), so that those collections walk only what came after.
         gc.collect()
         gc.freeze()
+        if self._notice:
+            self.notify(self._notice, timeout=12, markup=False)
+
+    def _display(self, screen: Screen, renderable: RenderableType | None) -> None:
+        # Real pixels are painted over cells that Textual may write again without a new
+        # frame (a dialog closing): the viewport is told what was written. A private
+        # method: Textual is pinned to 8.x.
+        super()._display(screen, renderable)
+        if isinstance(renderable, CompositorUpdate) and isinstance(screen, MainScreen):
+            screen.query_one(Viewport).repainted(renderable)
 
     def on_unmount(self) -> None:
         gc.unfreeze()
@@ -407,21 +426,33 @@ def _same_file(path: Path, other: Path) -> bool:
 
 
 def run_app(config: Config, colors: str = "auto", fps: float | None = None,
-            compile_aside: bool = False) -> None:
+            compile_aside: bool = False, graphics: str | None = None,
+            pixel_scale: float = 1.0) -> None:
     """Run the app on ``config``; ``colors`` is ``auto``, ``truecolor`` or ``256``; ``fps``
     caps the frame rate. ``compile_aside``: compile a frame's kernels in a forked child
-    while Textual starts (see engine/coldstart.py), for a process of its own."""
+    while Textual starts (see engine/coldstart.py), for a process of its own.
+    ``graphics``: the command line's choice of how the picture reaches the terminal
+    (default: the config's), real pixels ``pixel_scale`` of the terminal's each way."""
     if colors != "auto":
         os.environ["TEXTUAL_COLOR_SYSTEM"] = colors
         # Textual reads the variable once, when it is first imported, which has happened
         # by now; its console takes the colour system from this constant.
         textual.constants.COLOR_SYSTEM = colors
+    # Asked before Textual takes the terminal (its input thread would take the answers); not
+    # at all when the command line says half-blocks, so nothing is written but the app.
+    asked = graphics or config.render.graphics
+    answers = None if graphics == "halfblocks" else detect.ask()
+    choice = detect.choose(asked, answers, detect.Place.here())
+    notice = detect.hint(choice) or (choice.reason if choice.graphics != asked != "auto"
+                                     else None)
+    encoder = encoder_for(choice, pixel_scale)
     if compile_aside:
-        coldstart.compile_aside(partial(_draw_a_frame, config))
-    BicepsApp(config, fps=fps).run()
+        coldstart.compile_aside(partial(_draw_a_frame, config, encoder))
+    BicepsApp(config, fps=fps, encoder=encoder, notice=notice).run()
 
 
-def _draw_a_frame(config: Config) -> None:
-    """What the render thread does, on a tiny frame: so numba compiles (or loads) the very
-    kernels it runs."""
-    HalfBlocks().encode(SceneRenderer().render(Scene.of(config), 2, 2))
+def _draw_a_frame(config: Config, encoder: PictureEncoder) -> None:
+    """What the render thread does, on a frame of one cell: so numba compiles (or loads)
+    the very kernels it runs."""
+    cell = encoder.cell
+    encoder.encode(SceneRenderer().render(Scene.of(config), cell.width, cell.height))

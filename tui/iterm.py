@@ -4,7 +4,7 @@ and WezTerm show them.
 The image is a PNG (Pillow's fastest compression: lossless, and what every terminal that
 speaks the protocol decodes), stretched over the picture's cells (``width`` and ``height``
 in cells, ``preserveAspectRatio=0``), so a frame of fewer pixels than the cells hold is
-scaled up by the terminal.
+scaled up by the terminal. (The encoder is in ``tui/pixels.py``.)
 """
 
 from __future__ import annotations
@@ -14,8 +14,6 @@ import io
 
 import numpy as np
 from PIL import Image
-
-from biceps.tui.pixels import ImageEncoder
 
 
 def png(frame: np.ndarray) -> bytes:
@@ -30,10 +28,3 @@ def inline_image(data: bytes, columns: int, rows: int) -> str:
     arguments = (f"inline=1;size={len(data)};width={columns};height={rows};"
                  "preserveAspectRatio=0")
     return f"\x1b]1337;File={arguments}:{base64.b64encode(data).decode('ascii')}\x07"
-
-
-class ItermImages(ImageEncoder):
-    """Frames as iTerm2 inline PNG images."""
-
-    def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
-        return inline_image(png(frame), columns, rows)

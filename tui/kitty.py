@@ -4,7 +4,8 @@ speak it.
 
 Each frame is sent as raw RGB (``f=24``), deflated (``o=z``: zlib at its fastest level, a
 few milliseconds for a 1200x800 frame, against three times that for a PNG, and about as
-small), in base64 chunks of 4096 bytes as the protocol asks. Every frame reuses one image
+small), in base64 chunks of 4096 bytes as the protocol asks. (The encoder is in ``tui/pixels.py``;
+this module, free of Textual, also serves ``biceps snapshot --kitty``.) Every frame reuses one image
 id and one placement id, so each replaces the last in place, without flicker; ``C=1`` keeps
 the cursor still, ``q=2`` keeps the terminal from answering (its answers would reach the
 app as keys). ``c`` and ``r`` stretch the frame over the picture's cells, whatever its size
@@ -14,13 +15,9 @@ in pixels.
 from __future__ import annotations
 
 import base64
-import os
 import zlib
 
 import numpy as np
-from textual.geometry import Size
-
-from biceps.tui.pixels import ImageEncoder
 
 CHUNK = 4096  # base64 bytes per escape sequence, as the protocol asks
 PLACEMENT = 1
@@ -51,18 +48,3 @@ def transmit(frame: np.ndarray, image_id: int, columns: int, rows: int) -> str:
 def delete(image_id: int) -> str:
     """Take the image ``image_id`` off the screen and out of the terminal's memory."""
     return command(f"a=d,d=I,i={image_id},q=2")
-
-
-class KittyGraphics(ImageEncoder):
-    """Frames as kitty graphics images, one image id for them all."""
-
-    def __init__(self, cell: Size, image_id: int | None = None) -> None:
-        super().__init__(cell)
-        # Ids are shared by every program in the window: one of this process's own.
-        self.image_id = image_id if image_id is not None else 0x4200_0000 | os.getpid()
-
-    def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
-        return transmit(frame, self.image_id, columns, rows)
-
-    def clear(self) -> str:
-        return delete(self.image_id)

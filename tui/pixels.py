@@ -1,12 +1,13 @@
-"""What the encoders of real pixels share: the kitty graphics protocol, sixel and iTerm2
-images (``tui/kitty.py``, ``tui/sixel.py``, ``tui/iterm.py``).
+"""The encoders of real pixels: the kitty graphics protocol, sixel and iTerm2 images, each
+sending the whole frame as one image (the protocols themselves are ``tui/kitty.py``,
+``tui/sixel.py`` and ``tui/iterm.py``).
 
-Each sends the whole frame as one image, drawn from the picture's top-left cell over
-``columns x rows`` cells, with the cursor left where it was. The lines under the image are
-blank and are written only when the picture's size changes, so a new frame costs the image
-alone. All three paint over the cells (kitty's Unicode placeholders would not, but the
-kitty in Debian 12, 0.26, predates them): the viewport writes the image only when nothing
-is drawn over the picture, and again when Textual has repainted the cells under it.
+The image is drawn from the picture's top-left cell over ``columns x rows`` cells. The
+lines under it are blank and are written only when the picture's size changes, so a new
+frame costs the image alone. All three paint over the cells (kitty's Unicode placeholders
+would not, but the kitty in Debian 12, 0.26, predates them): the viewport writes the image
+only while nothing is drawn over the picture, and again when Textual has repainted the
+cells under it.
 
 A frame may be smaller than the cells it fills (a fraction of the terminal's pixels, for a
 slow link): kitty and iTerm2 scale it up to the cells; sixel, which cannot, is always sent
@@ -15,11 +16,16 @@ at the terminal's own pixel size.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 from textual.geometry import Size
 from textual.strip import Strip
 
-from biceps.tui.encoder import Picture
+from biceps.tui import iterm, kitty, sixel
+from biceps.tui.detect import Choice
+from biceps.tui.encoder import Picture, PictureEncoder
+from biceps.tui.halfblocks import HalfBlocks
 
 
 class ImageEncoder:
@@ -56,3 +62,50 @@ class ImageEncoder:
     def clear(self) -> str:
         """Escape sequences taking the image off the screen, where the terminal can."""
         return ""
+
+
+class KittyGraphics(ImageEncoder):
+    """Frames as kitty graphics images, one image id for them all."""
+
+    def __init__(self, cell: Size, image_id: int | None = None) -> None:
+        super().__init__(cell)
+        # Ids are shared by every program in the window: one of this process's own.
+        self.image_id = image_id if image_id is not None else 0x4200_0000 | os.getpid()
+
+    def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
+        return kitty.transmit(frame, self.image_id, columns, rows)
+
+    def clear(self) -> str:
+        return kitty.delete(self.image_id)
+
+
+class Sixel(ImageEncoder):
+    """Frames as sixel images of at most ``colours`` colours, at the terminal's pixels."""
+
+    def __init__(self, cell: Size, colours: int = sixel.MAX_COLOURS) -> None:
+        super().__init__(cell)
+        self.colours = max(2, min(colours, sixel.MAX_COLOURS))
+
+    def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
+        return sixel.sixel_image(*sixel.quantised(frame, self.colours))
+
+
+class ItermImages(ImageEncoder):
+    """Frames as iTerm2 inline PNG images."""
+
+    def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
+        return iterm.inline_image(iterm.png(frame), columns, rows)
+
+
+def encoder_for(choice: Choice, fraction: float = 1.0) -> PictureEncoder:
+    """The encoder for ``choice``, its frames ``fraction`` of the terminal's pixels each
+    way (kitty and iTerm2; sixel is always sent whole)."""
+    width, height = choice.cell
+    scaled = Size(max(1, round(width * fraction)), max(1, round(height * fraction)))
+    if choice.graphics == "kitty":
+        return KittyGraphics(scaled)
+    if choice.graphics == "iterm":
+        return ItermImages(scaled)
+    if choice.graphics == "sixel":
+        return Sixel(Size(width, height), choice.colours)
+    return HalfBlocks()

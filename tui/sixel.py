@@ -10,17 +10,16 @@ as the terminal has registers (256 at most here; xterm's vt340 has 16 unless tol
 Pillow quantises the frame to that palette (its fast octree: about 6 ms for 1200x800, and
 no dithering, whose noise would cost bytes in every band); a numba kernel writes the bands.
 textual-image's pure-Python encoder took about 50 ms for the same frame (measured with
-version 0.12: too slow for 30 frames a second with the frame still to be drawn).
+version 0.12: too slow for 30 frames a second with the frame still to be drawn). (The
+encoder is in ``tui/pixels.py``.)
 """
 
 from __future__ import annotations
 
 import numpy as np
 from PIL import Image
-from textual.geometry import Size
 
 from biceps.engine.jit import helper, ngjit
-from biceps.tui.pixels import ImageEncoder
 
 MAX_COLOURS = 256
 SIXEL = 63  # "?", the character of a column with no pixel set; "?" + bits for the others
@@ -135,14 +134,3 @@ def sixel_image(indices: np.ndarray, palette: np.ndarray) -> str:
         bits[:] = 0
     data = out[: length[0]].tobytes().decode("ascii")
     return f'\x1bP0;1;0q"1;1;{width};{height}{registers}{data}\x1b\\'
-
-
-class Sixel(ImageEncoder):
-    """Frames as sixel images of at most ``colours`` colours."""
-
-    def __init__(self, cell: Size, colours: int = MAX_COLOURS) -> None:
-        super().__init__(cell)
-        self.colours = max(2, min(colours, MAX_COLOURS))
-
-    def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
-        return sixel_image(*quantised(frame, self.colours))

@@ -129,4 +129,4 @@ def test_snapshot_ansi_prints_half_block_pixels_across_the_terminal(monkeypatch)
 def test_snapshot_needs_an_output_or_ansi():
     result = run("snapshot", DEFAULT_CONFIG)
     assert result.exit_code == 2
-    assert "give -o FILE.png, or --ansi" in result.stderr
+    assert "give -o FILE.png, or one of --ansi, --kitty, --sixel and --iterm" in result.stderr

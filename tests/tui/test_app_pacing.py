@@ -256,5 +256,6 @@ def test_the_command_line_passes_the_cap_to_the_app(monkeypatch):
     result = CliRunner().invoke(main, ["app", "--fps", "30"])
     assert result.exit_code == 0, result.output
     # Not the command's own process (a test's): nothing is forked.
-    assert runs == [{"colors": "auto", "fps": 30, "compile_aside": False}]
+    assert runs == [{"colors": "auto", "fps": 30, "compile_aside": False, "graphics": None,
+                     "pixel_scale": 1.0}]
     assert CliRunner().invoke(main, ["app", "--fps", "0"]).exit_code == 2

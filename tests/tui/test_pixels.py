@@ -18,9 +18,8 @@ from textual.geometry import Size
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui.iterm import ItermImages
-from biceps.tui.kitty import KittyGraphics
-from biceps.tui.sixel import Sixel, quantised, sixel_image
+from biceps.tui.pixels import ItermImages, KittyGraphics, Sixel
+from biceps.tui.sixel import quantised, sixel_image
 
 CELL = Size(10, 20)
 

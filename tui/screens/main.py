@@ -5,13 +5,15 @@ from __future__ import annotations
 
 from textual.app import ComposeResult
 from textual.containers import Horizontal, Vertical
-from textual.events import Resize
+from textual.events import Resize, ScreenSuspend
 from textual.screen import Screen
 from textual.widgets import Footer, Static
 
 from biceps.engine.arm import Arm
 from biceps.engine.scene import Scene
+from biceps.tui.encoder import PictureEncoder
 from biceps.tui.pacing import Pacer
+from biceps.tui.pixels import ImageEncoder
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.recorder import Recorder
@@ -25,14 +27,18 @@ SMALLEST_USEFUL = (60, 16)
 class MainScreen(Screen[None]):
     AUTO_FOCUS = "#viewport"
 
-    def __init__(self, pacer: Pacer) -> None:
+    def __init__(self, pacer: Pacer, encoder: PictureEncoder | None = None) -> None:
+        """``encoder``: how the picture reaches the terminal (default: half-blocks)."""
         super().__init__()
         self._pacer = pacer
+        self._encoder = encoder
         self._arm: Arm | None = None
+        # Real pixels are painted over the cells: notifications keep to the side panel.
+        self.set_class(isinstance(encoder, ImageEncoder), "-pixels")
 
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
-            yield Viewport(self._pacer, id="viewport")
+            yield Viewport(self._pacer, id="viewport", encoder=self._encoder)
             with Vertical(id="side"):
                 yield Stats(id="stats")
                 yield NodeTable(id="nodes")
@@ -50,6 +56,9 @@ class MainScreen(Screen[None]):
         self.watch(self.app, "scene", self._show_scene)
         self.watch(self.app, "unsaved", self._show_file)
         self.watch(self.app, "sub_title", self._show_file)
+
+    def on_screen_suspend(self, event: ScreenSuspend) -> None:
+        self.query_one(Viewport).hide_image()
 
     def on_resize(self, event: Resize) -> None:
         width, height = event.size

@@ -12,6 +12,12 @@ on screen was made, so they change with it.
 
 The next request is taken only when the :class:`~tui.pacing.Pacer` says the terminal has
 taken the last frame.
+
+An encoder of real pixels (``tui/pixels.py``) paints its image over the picture's cells, so
+the image is written only while the viewport's screen is the one shown (a dialog or the
+help screen would be painted over), taken off when another screen comes up or the size
+changes, and written again when Textual has repainted cells under it
+(:meth:`Viewport.repainted`).
 """
 
 from __future__ import annotations
@@ -23,6 +29,7 @@ from rich.color import Color
 from rich.style import Style
 from textual import events, work
 from textual.filter import ANSIToTruecolor, LineFilter
+from textual._compositor import ChopsUpdate, CompositorUpdate, LayoutUpdate
 from textual.geometry import Region
 from textual.message import Message
 from textual.strip import Strip
@@ -98,6 +105,8 @@ class Viewport(Widget, can_focus=True):
         self._shown = 0  # the number of the request whose frame is on screen
         self._strips: list[Strip] = []
         self._image = ""  # the image of the frame on screen, until it is written
+        self._latest_image = ""  # the newest frame's image, to write again after a repaint
+        self._image_on_screen = False  # whether an image was written and not cleared since
         self._background = Style()
         self._captions = ("", "")
         self._captioning = False
@@ -120,7 +129,32 @@ class Viewport(Widget, can_focus=True):
         self._write(self._encoder.clear())
 
     def on_resize(self) -> None:
+        # An image of the old size would stay over whatever now takes its place.
+        self._latest_image = ""
+        self.hide_image()
         self._request_frame()
+
+    def hide_image(self) -> None:
+        """Take the image off the screen (another screen is coming up over it)."""
+        if self._image_on_screen:
+            self._image_on_screen = False
+            self._write(self._encoder.clear())
+
+    def repainted(self, update: CompositorUpdate) -> None:
+        """Textual has written ``update`` to the terminal: if it wrote over the picture's
+        cells, the image painted there is gone, and is written again."""
+        if not self._latest_image or not self._on_top:
+            return
+        area = self.content_region
+        if isinstance(update, LayoutUpdate):
+            touched = update.region.overlaps(area)
+        elif isinstance(update, ChopsUpdate):
+            touched = any(area.y <= y < area.bottom and x1 < area.right and x2 >= area.x
+                          for y, x1, x2 in update.spans)
+        else:
+            touched = True
+        if touched:
+            self._write_image(self._latest_image)
 
     def _request_frame(self) -> None:
         width, height = self.size
@@ -173,12 +207,23 @@ class Viewport(Widget, can_focus=True):
             self.call_after_refresh(self._when_drawn, tries - 1)
             return
         if self._image and not self._repaint_regions:
-            # Over its lines once they are out (never over what hides them), and before the
+            # Over its lines once they are out (never over another screen), and before the
             # pacer's question, so that the answer waits for the image too.
-            x, y = self.content_region.offset
-            self._write(f"\x1b7\x1b[{y + 1};{x + 1}H{self._image}\x1b8")
+            self._latest_image = self._image
+            if self._on_top:
+                self._write_image(self._image)
         self._image = ""
         self._pacer.after_frame(self._requests.done)
+
+    @property
+    def _on_top(self) -> bool:
+        # Not Screen.is_current, which is also true of a screen shown behind a dialog.
+        return self.app.screen is self.screen
+
+    def _write_image(self, image: str) -> None:
+        x, y = self.content_region.offset
+        self._write(f"\x1b7\x1b[{y + 1};{x + 1}H{image}\x1b8")
+        self._image_on_screen = True
 
     def _write(self, text: str) -> None:
         # Straight to the driver, after the lines already queued there (as App.bell does).
