@@ -9,9 +9,11 @@ from rich.color import Color
 from rich.console import Console
 from rich.segment import Segment
 from rich.style import Style
+from textual.geometry import Size
 from textual.strip import Strip
 
 from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.pixels import ItermImages, KittyGraphics, Sixel
 from biceps.tui.sgr import minimized
 from vt import Screen
 
@@ -89,3 +91,15 @@ def test_a_picture_comes_back_exactly_and_shorter():
     lean = minimized(written)
     np.testing.assert_array_equal(Screen(30, 10).feed(lean).pixels(0, 0, 30, 10), frame)
     assert len(lean) < len(written)
+
+
+def test_images_pass_through_untouched_between_colour_codes():
+    # Kitty (APC), sixel (DCS) and iTerm2 (OSC) images, whose payloads hold "[", "m" and ";"
+    # a plenty, go out byte for byte; the colour codes around them are still made lean.
+    frame = np.random.default_rng(3).integers(0, 256, (40, 30, 3)).astype(np.uint8)
+    images = [encoder.encode(frame).image for encoder in
+              (KittyGraphics(Size(3, 4), 9), Sixel(Size(3, 4)), ItermImages(Size(3, 4)))]
+    text = "".join(f"\x1b[31mA\x1b[31mB\x1b7\x1b[2;3H{image}\x1b8\x1b[0;31mC" for image in images)
+    out = minimized(text)
+    assert [image in out for image in images] == [True, True, True]
+    assert out.count("\x1b[31m") == 1  # red once, whatever came between

@@ -30,7 +30,7 @@ from rich.style import Style
 from textual import events, work
 from textual.filter import ANSIToTruecolor, LineFilter
 from textual._compositor import ChopsUpdate, CompositorUpdate, LayoutUpdate
-from textual.geometry import Region
+from textual.geometry import Region, Size
 from textual.message import Message
 from textual.strip import Strip
 from textual.widget import Widget
@@ -105,7 +105,8 @@ class Viewport(Widget, can_focus=True):
         self._shown = 0  # the number of the request whose frame is on screen
         self._strips: list[Strip] = []
         self._image = ""  # the image of the frame on screen, until it is written
-        self._latest_image = ""  # the newest frame's image, to write again after a repaint
+        # The newest frame's image and its size in cells, to write again after a repaint.
+        self._latest_image, self._latest_size = "", Size(0, 0)
         self._image_on_screen = False  # whether an image was written and not cleared since
         self._background = Style()
         self._captions = ("", "")
@@ -143,8 +144,9 @@ class Viewport(Widget, can_focus=True):
     def repainted(self, update: CompositorUpdate) -> None:
         """Textual has written ``update`` to the terminal: if it wrote over the picture's
         cells, the image painted there is gone, and is written again."""
-        if not self._latest_image or not self._on_top:
-            return
+        if (not self._latest_image or self._image or not self._on_top
+                or self._latest_size != self.size):
+            return  # (a frame's image is written once its lines are; one of another size not)
         area = self.content_region
         if isinstance(update, LayoutUpdate):
             touched = update.region.overlaps(area)
@@ -188,6 +190,9 @@ class Viewport(Widget, can_focus=True):
         picture = message.picture
         self._strips = picture.strips
         self._image = picture.image
+        self._latest_image = picture.image
+        self._latest_size = Size(picture.strips[0].cell_length if picture.strips else 0,
+                                 len(picture.strips))
         self._shown = message.number
         if picture.changed:  # (no regions would mean all of them)
             self.refresh(*(self._rows(y, rows) for y, rows in picture.changed))
@@ -209,8 +214,7 @@ class Viewport(Widget, can_focus=True):
         if self._image and not self._repaint_regions:
             # Over its lines once they are out (never over another screen), and before the
             # pacer's question, so that the answer waits for the image too.
-            self._latest_image = self._image
-            if self._on_top:
+            if self._on_top and self._latest_size == self.size:
                 self._write_image(self._image)
         self._image = ""
         self._pacer.after_frame(self._requests.done)

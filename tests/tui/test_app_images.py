@@ -1,0 +1,114 @@
+"""Real pixels in the app: an image painted over the picture is written only while the main
+screen is on top, taken off when another screen comes up or the size changes, and written
+again when Textual repaints the cells under it."""
+
+from __future__ import annotations
+
+import numpy as np
+from textual._compositor import ChopsUpdate, LayoutUpdate
+from textual.geometry import Region, Size
+
+from biceps.engine.config import Config
+from biceps.tui.app import BicepsApp
+from biceps.tui.pixels import ImageEncoder
+from biceps.tui.widgets.viewport import Viewport
+
+
+class Numbered(ImageEncoder):
+    """Each frame's image is its number."""
+
+    def __init__(self) -> None:
+        super().__init__(Size(4, 8))
+        self.frames = 0
+
+    def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
+        self.frames += 1
+        return f"<image {self.frames}>"
+
+    def clear(self) -> str:
+        return "<clear>"
+
+
+async def _wait(pilot, condition) -> None:
+    for _ in range(1000):
+        if condition():
+            return
+        await pilot.pause(0.01)
+    raise AssertionError("never happened")
+
+
+async def _a_frame_written(app: BicepsApp, pilot, written: list[str]) -> Viewport:
+    viewport = app.query_one(Viewport)
+    await _wait(pilot, lambda: viewport.up_to_date)
+    await pilot.press("right")
+    await _wait(pilot, lambda: viewport.up_to_date and _images(written))
+    return viewport
+
+
+def _images(written: list[str]) -> list[str]:
+    return [text[text.index("<"):text.index(">") + 1] for text in written if "<" in text]
+
+
+async def test_an_image_is_never_painted_over_another_screen(config: Config):
+    encoder = Numbered()
+    app = BicepsApp(config, encoder=encoder)
+    async with app.run_test(size=(100, 30)) as pilot:
+        written: list[str] = []
+        app._driver.write = written.append
+        viewport = await _a_frame_written(app, pilot, written)
+        await pilot.press("question_mark")
+        await _wait(pilot, lambda: "<clear>" in _images(written))
+        del written[:]
+        shown = encoder.frames
+        viewport.show(app.scene)  # a new frame, made while the help is over the picture
+        await _wait(pilot, lambda: viewport.up_to_date and encoder.frames == shown + 1)
+        await pilot.pause(0.1)
+        assert _images(written) == []
+        await pilot.press("escape")
+        await _wait(pilot, lambda: f"<image {shown + 1}>" in _images(written))
+
+
+async def test_a_resize_takes_the_old_image_off_before_the_new_one(config: Config):
+    encoder = Numbered()
+    app = BicepsApp(config, encoder=encoder)
+    async with app.run_test(size=(100, 30)) as pilot:
+        written: list[str] = []
+        app._driver.write = written.append
+        viewport = await _a_frame_written(app, pilot, written)
+        before = f"<image {encoder.frames}>"
+        del written[:]
+        await pilot.resize_terminal(90, 28)
+        await _wait(pilot, lambda: viewport.up_to_date and len(_images(written)) > 1)
+        await pilot.pause(0.1)
+        # Taken off, then the new size's image; never the old size's again.
+        assert _images(written) == ["<clear>", f"<image {encoder.frames}>"] != before
+
+
+async def test_only_a_repaint_of_the_pictures_cells_writes_the_image_again(config: Config):
+    app = BicepsApp(config, encoder=Numbered())
+    async with app.run_test(size=(100, 30)) as pilot:
+        viewport = app.query_one(Viewport)
+        await _wait(pilot, lambda: viewport.up_to_date)
+        await pilot.pause(0.1)
+        written: list[str] = []
+        app._driver.write = written.append
+        area = viewport.content_region
+        side = (area.y + 2, area.right + 3, area.right + 10)  # a line of the side panel
+        border = (area.y - 1, area.x, area.right)  # the captions above the picture
+        viewport.repainted(ChopsUpdate([], [side, border], []))
+        viewport.repainted(LayoutUpdate([], Region(area.right + 1, 0, 10, 5)))
+        assert _images(written) == []
+        viewport.repainted(ChopsUpdate([], [(area.bottom - 1, area.right - 1, area.right + 5)],
+                                       []))
+        viewport.repainted(LayoutUpdate([], Region(0, 0, 100, 30)))
+        x, y = area.offset
+        assert written == [f"\x1b7\x1b[{y + 1};{x + 1}H<image 1>\x1b8"] * 2
+
+
+async def test_notifications_keep_to_the_side_panel_over_real_pixels(config: Config):
+    app = BicepsApp(config, encoder=Numbered())
+    async with app.run_test(size=(100, 30), notifications=True) as pilot:
+        app.notify("a notification long enough to wrap over several lines of the toast")
+        await pilot.pause(0.3)
+        toast = app.screen.query_one("ToastRack").query_one("Toast")
+        assert toast.region.x >= app.query_one(Viewport).content_region.right
