@@ -92,9 +92,12 @@ class Terminal:
     _refilled: float = 0.0
 
     @classmethod
-    def start(cls, argv: list[str], columns: int, rows: int) -> Terminal:
+    def start(cls, argv: list[str], columns: int, rows: int,
+              pixels: tuple[int, int] = (0, 0)) -> Terminal:
+        """``argv`` in a terminal of ``columns x rows`` cells, ``pixels`` (width, height)
+        in all, if it says."""
         master, slave = os.openpty()
-        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, 0, 0))
+        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, *pixels))
         environment = {
             key: value for key, value in os.environ.items() if not key.startswith("TEXTUAL")
         }
@@ -293,9 +296,10 @@ def over_link(terminal: Terminal, megabits: float, seconds: float) -> LinkResult
     return LinkResult(megabits, lag, phase.latencies)
 
 
-def started(argv: list[str], columns: int, rows: int) -> Terminal:
-    """The app in a terminal, its first picture drawn and a moment to settle."""
-    terminal = Terminal.start(argv, columns, rows)
+def started(argv: list[str], columns: int, rows: int, start=Terminal.start) -> Terminal:
+    """The app in a terminal (made by ``start``), its first picture drawn and a moment to
+    settle."""
+    terminal = start(argv, columns, rows)
     deadline = time.monotonic() + STARTUP_TIMEOUT
     while not any(frame.yaw is not None for frame in terminal.frames):
         if time.monotonic() > deadline or terminal.process.poll() is not None:

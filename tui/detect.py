@@ -16,10 +16,13 @@ A terminal answers in one round trip, however many questions there are; the time
 (:data:`ANSWER_TIME`) is for one that does not answer at all, and is long enough for a
 slow SSH link (a second and a half is longer than any round trip people type over).
 
-Inside tmux or GNU screen the multiplexer answers, not the terminal: tmux says sixel only
-when it draws sixel itself (tmux 3.4 built with sixel), and that is used; kitty images and
-iTerm2 images through their passthrough would be drawn where the outer terminal's cursor
-happens to be, not where the pane is, so those fall back to half-blocks, and say why.
+Inside tmux or GNU screen the multiplexer answers, not the terminal. tmux says sixel only
+when it draws sixel itself (tmux 3.4 built with sixel), and that is used. Otherwise, in a
+kitty (as tmux names the outer terminal) and with tmux's ``allow-passthrough`` on, kitty's
+images go through the passthrough, placed by Unicode placeholders (kitty 0.28 or later),
+which tmux draws, moves and hides as text. Images placed at the cursor (sixel and iTerm2
+through the passthrough, kitty's without placeholders) would be drawn where the outer
+cursor happens to be and stay when tmux shows another window: half-blocks, and why.
 
 :func:`choose` turns the answers and the asked ``--graphics`` into a :class:`Choice`;
 ``biceps doctor`` prints both.
@@ -57,6 +60,7 @@ REGISTERS = re.compile(rb"\x1b\[\?1;0;(\d+)S")
 CELL = re.compile(rb"\x1b\[6;(\d+);(\d+)t")
 WINDOW = re.compile(rb"\x1b\[4;(\d+);(\d+)t")
 SIXEL_ATTRIBUTE = "4"
+PLACEHOLDER_TERMINALS = ("kitty", "ghostty")  # as tmux names them: Unicode placeholders
 
 
 @dataclass(frozen=True)
@@ -151,24 +155,28 @@ class Place:
     term: str = ""
     colorterm: str = ""
     terminal_program: str = ""  # TERM_PROGRAM or LC_TERMINAL
+    passthrough: bool = False  # tmux's allow-passthrough is on
 
     @classmethod
     def here(cls, environ: Mapping[str, str] = os.environ) -> Place:
         multiplexer = "tmux" if environ.get("TMUX") else "screen" if environ.get("STY") else None
-        outer = _tmux_client_terminal() if multiplexer == "tmux" else None
+        inside_tmux = multiplexer == "tmux"
+        outer = _tmux("display-message", "-p", "#{client_termname}") if inside_tmux else None
+        passthrough = inside_tmux and _tmux("show-options", "-gv", "allow-passthrough") in (
+            "on", "all")
         return cls(multiplexer, outer, environ.get("TERM", ""), environ.get("COLORTERM", ""),
-                   environ.get("LC_TERMINAL") or environ.get("TERM_PROGRAM", ""))
+                   environ.get("LC_TERMINAL") or environ.get("TERM_PROGRAM", ""), passthrough)
 
 
-def _tmux_client_terminal() -> str | None:
+def _tmux(*arguments: str) -> str | None:
+    """What the tmux command says, or None if it cannot say (no tmux, too old an option)."""
     if shutil.which("tmux") is None:
         return None
     try:
-        result = subprocess.run(["tmux", "display-message", "-p", "#{client_termname}"],
-                                capture_output=True, text=True, timeout=2)
+        result = subprocess.run(["tmux", *arguments], capture_output=True, text=True, timeout=2)
     except (OSError, subprocess.SubprocessError):
         return None
-    return result.stdout.strip() or None
+    return result.stdout.strip() or None if result.returncode == 0 else None
 
 
 @dataclass(frozen=True)
@@ -181,6 +189,7 @@ class Choice:
     colours: int = 256  # sixel colour registers
     could: str | None = None  # the real pixels the terminal has, when not used
     notes: tuple[str, ...] = field(default_factory=tuple)
+    multiplexer: str | None = None  # what the images go through: "tmux" or None
 
 
 def best(answers: Answers, place: Place) -> tuple[str | None, str]:
@@ -191,10 +200,18 @@ def best(answers: Answers, place: Place) -> tuple[str | None, str]:
     if place.multiplexer == "tmux":
         if answers.sixel:
             return "sixel", "tmux draws sixel images itself (its device attributes say 4)"
-        outer = f" (in {place.outer_terminal})" if place.outer_terminal else ""
-        return None, (f"inside tmux{outer}, which does not draw sixel itself; kitty and iTerm2 "
-                      "images through its passthrough would land where the outer cursor is, "
-                      "not in the pane: half-blocks")
+        outer = place.outer_terminal or ""
+        kitty = any(name in outer for name in PLACEHOLDER_TERMINALS)
+        if kitty and place.passthrough:
+            return "kitty", (f"inside tmux in {outer}, with allow-passthrough on: kitty images "
+                             "through it, placed by Unicode placeholders (kitty 0.28 or later)")
+        if kitty:
+            return None, (f"inside tmux in {outer}, with allow-passthrough off: half-blocks "
+                          "(tmux set -g allow-passthrough on lets kitty's images through)")
+        within = f" (in {outer})" if outer else ""
+        return None, (f"inside tmux{within}, which does not draw sixel itself, and images "
+                      "other than kitty's placeholders would land where the outer cursor is, "
+                      "and stay when tmux shows another window: half-blocks")
     if answers.kitty == "OK":
         return "kitty", "the terminal answered kitty's graphics query with OK"
     if "iterm" in name:
@@ -218,15 +235,16 @@ def choose(asked: str, answers: Answers | None, place: Place) -> Choice:
     if answers.sixel and answers.colour_registers is not None and answers.colour_registers < 64:
         notes += (f"sixel has only {answers.colour_registers} colours here; xterm takes more "
                   "with -xrm 'XTerm*numColorRegisters: 256'",)
+    through = place.multiplexer if place.multiplexer == "tmux" else None
     if asked == "auto":
         graphics = found or "halfblocks"
-        return Choice(graphics, f"auto: {why}", cell, colours, None, notes)
+        return Choice(graphics, f"auto: {why}", cell, colours, None, notes, through)
     if asked == "halfblocks":
         reason = "halfblocks, as asked (the default)"
         return Choice("halfblocks", reason, cell, colours, found, notes)
     if place.multiplexer is not None and found != asked:
         return Choice("halfblocks", f"{asked} was asked, but {why}", cell, colours, found, notes)
-    return Choice(asked, f"{asked}, as asked", cell, colours, None, notes)
+    return Choice(asked, f"{asked}, as asked", cell, colours, None, notes, through)
 
 
 def _cell(answers: Answers) -> tuple[tuple[int, int], str]:
@@ -259,6 +277,7 @@ def report(asked: str, answers: Answers | None, place: Place, choice: Choice) ->
                      f"{', ' + place.terminal_program if place.terminal_program else ''})"),
         ("multiplexer", place.multiplexer + (f" in {place.outer_terminal}"
                                              if place.outer_terminal else "")
+         + (", allow-passthrough on" if place.passthrough else "")
          if place.multiplexer else "none"),
         ("round trip", "no terminal to ask (not a terminal)" if answers is None else
          f"{1000 * a.round_trip:.1f} ms" if a.round_trip is not None else

@@ -4,10 +4,11 @@ sending the whole frame as one image (the protocols themselves are ``tui/kitty.p
 
 The image is drawn from the picture's top-left cell over ``columns x rows`` cells. The
 lines under it are blank and are written only when the picture's size changes, so a new
-frame costs the image alone. All three paint over the cells (kitty's Unicode placeholders
-would not, but the kitty in Debian 12, 0.26, predates them): the viewport writes the image
+frame costs the image alone. All three paint over the cells: the viewport writes the image
 only while nothing is drawn over the picture, and again when Textual has repainted the
-cells under it.
+cells under it. Inside tmux, kitty's images are placed by Unicode placeholders instead
+(:class:`KittyPlaceholders`), which are the lines; kitty's own placements are used
+elsewhere, as the kitty in Debian 12 (0.26) predates placeholders.
 
 A frame may be smaller than the cells it fills (a fraction of the terminal's pixels, for a
 slow link): kitty and iTerm2 scale it up to the cells; sixel, which cannot, is always sent
@@ -19,6 +20,9 @@ from __future__ import annotations
 import os
 
 import numpy as np
+from rich.color import Color
+from rich.segment import Segment
+from rich.style import Style
 from textual.geometry import Size
 from textual.strip import Strip
 
@@ -47,12 +51,16 @@ class ImageEncoder:
         changed = []
         if self._shape != (rows, columns):
             self._shape = rows, columns
-            self._strips = [Strip.blank(columns)] * rows
+            self._strips = self.lines(columns, rows)
             changed = [(0, rows)]
         return Picture(self._strips, changed, self.image(frame, columns, rows))
 
     def reset(self) -> None:
         self._shape = None
+
+    def lines(self, columns: int, rows: int) -> list[Strip]:
+        """The lines under the image: blank."""
+        return [Strip.blank(columns)] * rows
 
     def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
         """Escape sequences drawing ``frame`` from the cursor over ``columns x rows`` cells
@@ -73,10 +81,38 @@ class KittyGraphics(ImageEncoder):
         self.image_id = image_id if image_id is not None else 0x4200_0000 | os.getpid()
 
     def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
-        return kitty.transmit(frame, self.image_id, columns, rows)
+        return "".join(kitty.transmit(frame, self.image_id, columns, rows))
 
     def clear(self) -> str:
         return kitty.delete(self.image_id)
+
+
+class KittyPlaceholders(ImageEncoder):
+    """Frames as kitty graphics images through tmux, placed by Unicode placeholders.
+
+    The image id is the placeholders' colour: one of the 256-colour palette, which tmux
+    passes on as it is (a 24-bit one it would round without its RGB feature).
+    """
+
+    def __init__(self, cell: Size, image_id: int | None = None) -> None:
+        super().__init__(cell)
+        self.image_id = image_id if image_id is not None else 16 + os.getpid() % 240
+        self._style = Style(color=Color.from_ansi(self.image_id))
+
+    def lines(self, columns: int, rows: int) -> list[Strip]:
+        # The diacritics number 297 rows and columns; cells beyond stay blank.
+        shown = min(columns, len(kitty.DIACRITICS))
+        return [Strip([Segment(kitty.placeholders(row, shown), self._style),
+                       Segment(" " * (columns - shown))], columns)
+                if row < len(kitty.DIACRITICS) else Strip.blank(columns)
+                for row in range(rows)]
+
+    def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
+        columns, rows = (min(count, len(kitty.DIACRITICS)) for count in (columns, rows))
+        return kitty.through_tmux(kitty.transmit(frame, self.image_id, columns, rows, True))
+
+    def clear(self) -> str:
+        return kitty.through_tmux([kitty.delete(self.image_id)])
 
 
 class Sixel(ImageEncoder):
@@ -102,6 +138,8 @@ def encoder_for(choice: Choice, fraction: float = 1.0) -> PictureEncoder:
     way (kitty and iTerm2; sixel is always sent whole)."""
     width, height = choice.cell
     scaled = Size(max(1, round(width * fraction)), max(1, round(height * fraction)))
+    if choice.graphics == "kitty" and choice.multiplexer == "tmux":
+        return KittyPlaceholders(scaled)
     if choice.graphics == "kitty":
         return KittyGraphics(scaled)
     if choice.graphics == "iterm":

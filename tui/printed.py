@@ -24,7 +24,7 @@ def image(protocol: str, frame: np.ndarray, columns: int, rows: int, colours: in
     """``frame`` ((h, w, 3) uint8) as an image in ``protocol`` over ``columns x rows``
     cells from the cursor."""
     if protocol == "kitty":
-        return kitty.transmit(frame, 1, columns, rows)
+        return "".join(kitty.transmit(frame, 1, columns, rows))
     if protocol == "sixel":
         return sixel.sixel_image(*sixel.quantised(frame, colours))
     return iterm.inline_image(iterm.png(frame), columns, rows)

@@ -8,7 +8,7 @@ from textual.geometry import Size
 from biceps.tui import detect
 from biceps.tui.detect import Answers, Place, choose, hint, parse, report
 from biceps.tui.halfblocks import HalfBlocks
-from biceps.tui.pixels import ItermImages, KittyGraphics, Sixel, encoder_for
+from biceps.tui.pixels import ItermImages, KittyGraphics, KittyPlaceholders, Sixel, encoder_for
 
 KITTY_ANSWERS = (b"\x1b_Gi=31;OK\x1b\\\x1bP>|kitty(0.26.5)\x1b\\\x1b[6;20;10t"
                  b"\x1b[4;800;1000t\x1b[?62;c")
@@ -59,15 +59,27 @@ def test_halfblocks_by_default_and_a_hint_once_when_the_terminal_has_more():
     assert hint(choose("halfblocks", parse(b"\x1b[?62c", 0.01), Place())) is None
 
 
-def test_inside_tmux_sixel_only_when_tmux_draws_it():
-    tmux = Place(multiplexer="tmux", outer_terminal="xterm-kitty")
+def test_inside_tmux_sixel_when_tmux_draws_it():
+    tmux = Place(multiplexer="tmux", outer_terminal="xterm-256color")
     assert choose("auto", parse(TMUX_SIXEL_ANSWERS, 0.01), tmux).graphics == "sixel"
-    # tmux answers for itself: kitty's query never reaches kitty.
     choice = choose("auto", parse(b"\x1b[?1;2c", 0.01), tmux)
     assert choice.graphics == "halfblocks"
-    assert "inside tmux (in xterm-kitty)" in choice.reason and "passthrough" in choice.reason
-    asked = choose("kitty", parse(b"\x1b[?1;2c", 0.01), tmux)
-    assert asked.graphics == "halfblocks" and asked.reason.startswith("kitty was asked, but")
+    assert "inside tmux (in xterm-256color), which does not draw sixel" in choice.reason
+    asked = choose("iterm", parse(b"\x1b[?1;2c", 0.01), tmux)
+    assert asked.graphics == "halfblocks" and asked.reason.startswith("iterm was asked, but")
+
+
+def test_inside_tmux_in_kitty_kitty_through_the_passthrough_when_it_is_on():
+    # tmux answers for itself (kitty's query never reaches kitty): tmux names the terminal.
+    answers = parse(b"\x1b[?1;2c", 0.01)
+    closed = choose("auto", answers, Place(multiplexer="tmux", outer_terminal="xterm-kitty"))
+    assert closed.graphics == "halfblocks"
+    assert "tmux set -g allow-passthrough on" in closed.reason
+    open_ = choose("auto", answers, Place(multiplexer="tmux", outer_terminal="xterm-kitty",
+                                          passthrough=True))
+    assert open_.graphics == "kitty" and open_.multiplexer == "tmux"
+    assert isinstance(encoder_for(open_), KittyPlaceholders)
+    assert isinstance(encoder_for(choose("kitty", answers, Place())), KittyGraphics)
 
 
 def test_inside_screen_half_blocks():
@@ -122,9 +134,11 @@ def test_the_doctors_report_says_what_came_back_and_why():
     assert "no terminal to ask" in report("auto", None, place, choose("auto", None, place))
 
 
-def test_tmux_is_found_by_its_variable(monkeypatch):
-    monkeypatch.setattr(detect, "_tmux_client_terminal", lambda: "xterm-kitty")
+def test_tmux_is_found_by_its_variable_and_asked_about_itself(monkeypatch):
+    said = {("display-message", "-p", "#{client_termname}"): "xterm-kitty",
+            ("show-options", "-gv", "allow-passthrough"): "on"}
+    monkeypatch.setattr(detect, "_tmux", lambda *arguments: said[arguments])
     assert Place.here({"TMUX": "/tmp/tmux-0/default,1,0", "TERM": "tmux-256color"}) == Place(
-        "tmux", "xterm-kitty", "tmux-256color", "", "")
+        "tmux", "xterm-kitty", "tmux-256color", "", "", True)
     assert Place.here({"STY": "1.pts-0.host"}).multiplexer == "screen"
     assert Place.here({"TERM_PROGRAM": "WezTerm"}).terminal_program == "WezTerm"

@@ -9,6 +9,7 @@ import os
 import re
 import shutil
 import subprocess
+import unicodedata
 import zlib
 
 import numpy as np
@@ -18,7 +19,8 @@ from textual.geometry import Size
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui.pixels import ItermImages, KittyGraphics, Sixel
+from biceps.tui import kitty
+from biceps.tui.pixels import ItermImages, KittyGraphics, KittyPlaceholders, Sixel
 from biceps.tui.sixel import quantised, sixel_image
 
 CELL = Size(10, 20)
@@ -41,6 +43,39 @@ def test_kitty_payload_decodes_to_the_frame_exactly(frame):
     assert all(len(payload) <= 4096 for _, payload in commands)
     data = zlib.decompress(base64.b64decode("".join(payload for _, payload in commands)))
     np.testing.assert_array_equal(np.frombuffer(data, np.uint8).reshape(frame.shape), frame)
+
+
+def test_the_placeholder_diacritics_follow_kittys_rule():
+    # Combining class 230, no decomposition, in no composition; the Unicode 6.0 ones (the
+    # list's age is not in unicodedata: its length and last character pin it).
+    composing = {int(part, 16) for code in range(0x110000)
+                 if (mapping := unicodedata.decomposition(chr(code)))
+                 and not mapping.startswith("<") for part in mapping.split()}
+    for mark in kitty.DIACRITICS:
+        assert unicodedata.combining(mark) == 230 and unicodedata.decomposition(mark) == ""
+        assert ord(mark) not in composing
+    assert len(kitty.DIACRITICS) == 297 and kitty.DIACRITICS[-1] == "\U0001d244"
+    assert kitty.DIACRITICS == sorted(kitty.DIACRITICS)
+
+
+def test_through_tmux_the_placeholders_are_the_lines_and_the_image_is_passed_through(frame):
+    encoder = KittyPlaceholders(CELL, image_id=42)
+    picture = encoder.encode(frame)
+    assert all(strip.cell_length == 24 for strip in picture.strips)
+    cells = [(segment.text, segment.style.color.number) for segment in picture.strips[3]
+             if segment.text.strip()]
+    assert cells == [("".join("\U0010eeee" + kitty.DIACRITICS[3] + kitty.DIACRITICS[column]
+                              for column in range(24)), 42)]
+    # Each command in its own passthrough, escapes doubled; unwrapped, a virtual placement.
+    assert picture.image.startswith("\x1bPtmux;") and picture.image.endswith("\x1b\\")
+    wrapped = [piece.removesuffix("\x1b\\") for piece in picture.image.split("\x1bPtmux;")[1:]]
+    assert all(piece.count("\x1b") == 2 * piece.count("\x1b\x1b") for piece in wrapped)
+    commands = [piece.replace("\x1b\x1b", "\x1b") for piece in wrapped]
+    assert commands[0].startswith("\x1b_Ga=T,f=24,o=z,s=240,v=180,i=42,U=1,c=24,r=9,q=2,m=")
+    payload = "".join(command.split(";", 1)[1][:-2] for command in commands)
+    data = zlib.decompress(base64.b64decode(payload))
+    np.testing.assert_array_equal(np.frombuffer(data, np.uint8).reshape(frame.shape), frame)
+    assert encoder.clear() == "\x1bPtmux;\x1b\x1b_Ga=d,d=I,i=42,q=2\x1b\x1b\\\x1b\\"
 
 
 def test_kitty_clearing_deletes_its_own_image():
