@@ -1,0 +1,74 @@
+"""Kitty images through tmux: the app inside tmux, in a terminal that tmux knows as
+xterm-kitty, with allow-passthrough on, sends its frames through tmux's passthrough as
+virtual placements, and its picture's cells are Unicode placeholders that tmux draws as
+text; on quitting, the image is deleted. This test plays the outer terminal in a
+pseudo-terminal and reads what tmux writes to it."""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import re
+import select
+import shutil
+import struct
+import subprocess
+import sys
+import termios
+import time
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+PLACEHOLDER = "\U0010eeee".encode()
+
+
+def _read_until(master: int, output: bytearray, condition, timeout: float) -> bool:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if condition(bytes(output)):
+            return True
+        if select.select([master], [], [], 0.1)[0]:
+            try:
+                output += os.read(master, 1 << 16)
+            except OSError:
+                return condition(bytes(output))
+    return condition(bytes(output))
+
+
+def test_kitty_images_go_through_tmux_placed_by_placeholders(tmp_path):
+    if shutil.which("tmux") is None:
+        if os.environ.get("CI"):
+            pytest.fail("tmux is missing: .ci/run installs it")
+        pytest.skip("needs tmux")
+    config = tmp_path / "tmux.conf"
+    config.write_text("set -g allow-passthrough on\nset -g status off\n")
+    app = f"{sys.executable} -m biceps app --graphics auto --colors truecolor"
+    master, slave = os.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 100, 1000, 600))
+    environment = {key: value for key, value in os.environ.items()
+                   if not key.startswith(("TEXTUAL", "TMUX"))}
+    environment.update(TERM="xterm-kitty")
+    tmux = subprocess.Popen(["tmux", "-S", str(tmp_path / "socket"), "-f", str(config),
+                             "new-session", app], stdin=slave, stdout=slave, stderr=slave,
+                            env=environment, cwd=ROOT, start_new_session=True)
+    os.close(slave)
+    output = bytearray()
+    try:
+        # The first frame: a virtual placement of the whole picture, and placeholders.
+        assert _read_until(master, output, lambda out: re.search(
+            rb"\x1b_Ga=T,f=24,o=z,s=\d+,v=\d+,i=(\d+),U=1,c=\d+,r=\d+,q=2", out)
+            and PLACEHOLDER in out, timeout=120), output[-3000:]
+        image_id = re.search(rb"\x1b_Ga=T,[^;]*,i=(\d+),U=1", output)[1]
+        # The placeholders' colour is the image id, in the 256-colour palette. (tmux writes
+        # a placeholder, then again with each diacritic, backing up over it.)
+        assert re.search(rb"\x1b\[38;5;" + image_id + rb"m" + PLACEHOLDER, output)
+        os.write(master, b"q")
+        assert _read_until(master, output, lambda out: b"\x1b_Ga=d,d=I,i=" + image_id in out,
+                           timeout=30)
+    finally:
+        if tmux.poll() is None:
+            os.killpg(tmux.pid, 9)
+        tmux.wait()
+        os.close(master)
