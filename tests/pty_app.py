@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 UPPER_HALF = "▀".encode()
+DEVICE_ATTRIBUTES_QUERY = b"\x1b[c"
 
 
 @dataclass
@@ -62,7 +63,11 @@ def _read_until_picture(master: int, output: bytearray, deadline: float) -> None
     quiet_since = None
     while time.monotonic() < deadline:
         if select.select([master], [], [], 0.05)[0]:
+            answered = DEVICE_ATTRIBUTES_QUERY in output
             output += os.read(master, 1 << 16)
+            if not answered and DEVICE_ATTRIBUTES_QUERY in output:
+                # The app asks what the terminal can show (tui/detect.py): a VT220's answer.
+                os.write(master, b"\x1b[?62;22c")
             quiet_since = None
         elif UPPER_HALF in output:
             # The picture has begun: the frame is whole once the output pauses.

@@ -13,8 +13,9 @@ follows from it.
   answer that is coming has come.
 
 A terminal answers in one round trip, however many questions there are; the time limit
-(:data:`ANSWER_TIME`) is for one that does not answer at all, and is long enough for a
-slow SSH link (a second and a half is longer than any round trip people type over).
+(:data:`ANSWER_TIME`) is for one that does not answer at all (no terminal descended from
+the VT100 is one), and is long enough for a slow SSH link: two seconds is longer than any
+round trip people type over. Answers that came later still would reach the app as keys.
 
 Inside tmux or GNU screen the multiplexer answers, not the terminal. tmux says sixel only
 when it draws sixel itself (tmux 3.4 built with sixel), and that is used. Otherwise, in a
@@ -43,7 +44,7 @@ import tty
 from dataclasses import dataclass, field
 from typing import Mapping
 
-ANSWER_TIME = 1.5  # seconds to wait for a terminal that does not answer at all
+ANSWER_TIME = 2.0  # seconds to wait for a terminal that does not answer at all
 DEFAULT_CELL = (10, 20)  # pixels, when the terminal does not say
 QUESTIONS = (
     "\x1b_Gi=31,s=1,v=1,a=q,t=d,f=24;AAAA\x1b\\"  # kitty graphics

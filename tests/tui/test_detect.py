@@ -47,7 +47,7 @@ def test_auto_takes_the_best_the_terminal_has(data, graphics):
 
 def test_auto_says_when_the_terminal_did_not_answer():
     choice = choose("auto", parse(b""), Place())
-    assert choice.graphics == "halfblocks" and "did not answer within 1.5 s" in choice.reason
+    assert choice.graphics == "halfblocks" and "did not answer within 2 s" in choice.reason
 
 
 def test_halfblocks_by_default_and_a_hint_once_when_the_terminal_has_more():
