@@ -32,6 +32,7 @@ from biceps.engine.config import Config, load_config, save_config
 from biceps.engine.errors import BicepsError
 from biceps.engine.export import check_writable, parse_size, write_png
 from biceps.engine.scene import Scene, SceneRenderer
+from biceps.tui import detect
 from biceps.tui.changes import (
     COARSE_STEP,
     FINE_STEP,
@@ -47,12 +48,11 @@ from biceps.tui.changes import (
     with_shading_switched,
     zoomed,
 )
-from biceps.tui import detect
 from biceps.tui.commands import KeyCommands
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.pacing import Pacer, cursor_question
-from biceps.tui.pixels import encoder_for
 from biceps.tui.parse import parse_path
+from biceps.tui.pixels import encoder_for
 from biceps.tui.screens.choice import Answer, Choice
 from biceps.tui.screens.help import HelpScreen
 from biceps.tui.screens.main import MainScreen
@@ -443,12 +443,10 @@ def run_app(config: Config, colors: str = "auto", fps: float | None = None,
     asked = graphics or config.render.graphics
     answers = None if graphics == "halfblocks" else detect.ask()
     choice = detect.choose(asked, answers, detect.Place.here())
-    notice = detect.hint(choice) or (choice.reason if choice.graphics != asked != "auto"
-                                     else None)
     encoder = encoder_for(choice, pixel_scale)
     if compile_aside:
         coldstart.compile_aside(partial(_draw_a_frame, config, encoder))
-    BicepsApp(config, fps=fps, encoder=encoder, notice=notice).run()
+    BicepsApp(config, fps=fps, encoder=encoder, notice=detect.notice(asked, choice)).run()
 
 
 def _draw_a_frame(config: Config, encoder: PictureEncoder) -> None:

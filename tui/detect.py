@@ -270,6 +270,14 @@ def hint(choice: Choice) -> str | None:
             "in the config.")
 
 
+def notice(asked: str, choice: Choice) -> str | None:
+    """What the app says once it is up: that real pixels could be had, or why the real
+    pixels asked for are half-blocks."""
+    if asked != "halfblocks" and choice.graphics == "halfblocks":
+        return f"Half-blocks: {choice.reason}"
+    return hint(choice)
+
+
 def report(asked: str, answers: Answers | None, place: Place, choice: Choice) -> str:
     """What ``biceps doctor`` prints: what was asked, what came back, what follows."""
     a = answers or Answers()

@@ -123,7 +123,16 @@ def test_a_protocol_the_place_cannot_take_falls_back_and_says_why(started, monke
                         classmethod(lambda cls: detect.Place(multiplexer="screen")))
     assert run("app", DEFAULT_CONFIG, "--graphics", "kitty").exit_code == 0
     assert isinstance(started["encoder"], HalfBlocks)
-    assert "kitty was asked, but inside GNU screen" in started["notice"]
+    assert "Half-blocks: kitty was asked, but inside GNU screen" in started["notice"]
+
+
+def test_auto_says_why_it_came_to_half_blocks(started, monkeypatch):
+    monkeypatch.setattr(detect, "ask", lambda: detect.parse(b"\x1b[?1;2c", 0.01))  # tmux's
+    monkeypatch.setattr(detect.Place, "here", classmethod(
+        lambda cls: detect.Place(multiplexer="tmux", outer_terminal="xterm-kitty")))
+    assert run("app", DEFAULT_CONFIG, "--graphics", "auto").exit_code == 0
+    assert isinstance(started["encoder"], HalfBlocks)
+    assert "tmux set -g allow-passthrough on" in started["notice"]
 
 
 def test_a_bad_pixel_scale_is_refused():
