@@ -226,7 +226,11 @@ class Viewport(Widget, can_focus=True):
 
     def _write_image(self, image: str) -> None:
         x, y = self.content_region.offset
-        self._write(f"\x1b7\x1b[{y + 1};{x + 1}H{image}\x1b8")
+        text = f"\x1b7\x1b[{y + 1};{x + 1}H{image}\x1b8"
+        if self.app._sync_available:  # (private: Textual is pinned to 8.x)
+            # All at once where the terminal can: never half an image on screen.
+            text = f"\x1b[?2026h{text}\x1b[?2026l"
+        self._write(text)
         self._image_on_screen = True
 
     def _write(self, text: str) -> None:
