@@ -52,7 +52,7 @@ MAX_PARAMETERS = 64
 
 
 @helper
-def _put_number(out, at, number):
+def put_number(out, at, number):
     """Write ``number`` (>= 0) in decimal at ``out[at:]``; return where it ends."""
     digits = 1
     while number >= 10**digits:
@@ -68,20 +68,20 @@ def _put_colour(out, at, colour, foreground):
     """Write the codes of ``colour`` (packed as above); return where they end."""
     kind, value = colour & ~VALUE, colour & VALUE
     if kind == BASIC:
-        return _put_number(out, at, value)
+        return put_number(out, at, value)
     if colour == 0:
-        return _put_number(out, at, 39 if foreground else 49)
-    at = _put_number(out, at, 38 if foreground else 48)
+        return put_number(out, at, 39 if foreground else 49)
+    at = put_number(out, at, 38 if foreground else 48)
     out[at] = 59  # ;
     if kind == PALETTE:
         out[at + 1] = 53  # 5
         out[at + 2] = 59
-        return _put_number(out, at + 3, value)
+        return put_number(out, at + 3, value)
     out[at + 1] = 50  # 2
     at += 2
     for shift in (16, 8, 0):
         out[at] = 59
-        at = _put_number(out, at + 1, (value >> shift) & 0xFF)
+        at = put_number(out, at + 1, (value >> shift) & 0xFF)
     return at
 
 
@@ -102,7 +102,7 @@ def _put_sgr(out, at, sent, wanted, attributes, reset):
             if at > start + 2:
                 out[at] = 59  # ;
                 at += 1
-            at = _put_number(out, at, attributes[bit])
+            at = put_number(out, at, attributes[bit])
     for index in (1, 2):
         if wanted[index] != (0 if reset else sent[index]):
             if at > start + 2:

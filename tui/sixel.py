@@ -20,6 +20,7 @@ import numpy as np
 from PIL import Image
 
 from biceps.engine.jit import helper, ngjit
+from biceps.tui.sgr import put_number  # decimal digits into a byte buffer, as SGR has them
 
 MAX_COLOURS = 256
 SIXEL = 63  # "?", the character of a column with no pixel set; "?" + bits for the others
@@ -27,23 +28,11 @@ REPEAT, NEXT_COLOUR, NEXT_BAND, SELECT = 33, 36, 45, 35  # "!", "$", "-", "#"
 
 
 @helper
-def _put_number(out, at, number):
-    """Write ``number`` (>= 0) in decimal at ``out[at:]``; return where it ends."""
-    digits = 1
-    while number >= 10**digits:
-        digits += 1
-    for place in range(digits - 1, -1, -1):
-        out[at + place] = 48 + number % 10
-        number //= 10
-    return at + digits
-
-
-@helper
 def _put_run(out, at, character, count):
     """Write ``count`` times ``character``, as ``!count`` when that is shorter."""
     if count > 3:
         out[at] = REPEAT
-        at = _put_number(out, at + 1, count)
+        at = put_number(out, at + 1, count)
         out[at] = character
         return at + 1
     for index in range(count):
@@ -81,7 +70,7 @@ def encode_bands(indices, colours, out, length, lows, highs, bits):
                 length[0] = -1
                 return
             out[written] = SELECT
-            written = _put_number(out, written + 1, colour)
+            written = put_number(out, written + 1, colour)
             written = _put_run(out, written, SIXEL, low)
             run, count = bits[colour, low], 0
             for x in range(low, high + 1):

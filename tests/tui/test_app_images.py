@@ -12,6 +12,7 @@ from biceps.engine.config import Config
 from biceps.tui.app import BicepsApp
 from biceps.tui.pixels import ImageEncoder
 from biceps.tui.widgets.viewport import Viewport
+from waiting import until
 
 
 class Numbered(ImageEncoder):
@@ -29,20 +30,16 @@ class Numbered(ImageEncoder):
         return "<clear>"
 
 
-async def _wait(pilot, condition) -> None:
-    for _ in range(1000):
-        if condition():
-            return
-        await pilot.pause(0.01)
-    raise AssertionError("never happened")
-
-
-async def _a_frame_written(app: BicepsApp, pilot, written: list[str]) -> Viewport:
+async def _a_frame_written(app: BicepsApp, pilot) -> tuple[Viewport, list[str]]:
+    """The viewport, once a frame's image has been written, and what is written to the
+    terminal from then on."""
+    written: list[str] = []
+    app._driver.write = written.append
     viewport = app.query_one(Viewport)
-    await _wait(pilot, lambda: viewport.up_to_date)
+    await until(pilot, lambda: viewport.up_to_date)
     await pilot.press("right")
-    await _wait(pilot, lambda: viewport.up_to_date and _images(written))
-    return viewport
+    await until(pilot, lambda: viewport.up_to_date and _images(written))
+    return viewport, written
 
 
 def _images(written: list[str]) -> list[str]:
@@ -53,32 +50,28 @@ async def test_an_image_is_never_painted_over_another_screen(config: Config):
     encoder = Numbered()
     app = BicepsApp(config, encoder=encoder)
     async with app.run_test(size=(100, 30)) as pilot:
-        written: list[str] = []
-        app._driver.write = written.append
-        viewport = await _a_frame_written(app, pilot, written)
+        viewport, written = await _a_frame_written(app, pilot)
         await pilot.press("question_mark")
-        await _wait(pilot, lambda: "<clear>" in _images(written))
+        await until(pilot, lambda: "<clear>" in _images(written))
         del written[:]
         shown = encoder.frames
         viewport.show(app.scene)  # a new frame, made while the help is over the picture
-        await _wait(pilot, lambda: viewport.up_to_date and encoder.frames == shown + 1)
+        await until(pilot, lambda: viewport.up_to_date and encoder.frames == shown + 1)
         await pilot.pause(0.1)
         assert _images(written) == []
         await pilot.press("escape")
-        await _wait(pilot, lambda: f"<image {shown + 1}>" in _images(written))
+        await until(pilot, lambda: f"<image {shown + 1}>" in _images(written))
 
 
 async def test_a_resize_takes_the_old_image_off_before_the_new_one(config: Config):
     encoder = Numbered()
     app = BicepsApp(config, encoder=encoder)
     async with app.run_test(size=(100, 30)) as pilot:
-        written: list[str] = []
-        app._driver.write = written.append
-        viewport = await _a_frame_written(app, pilot, written)
+        viewport, written = await _a_frame_written(app, pilot)
         before = f"<image {encoder.frames}>"
         del written[:]
         await pilot.resize_terminal(90, 28)
-        await _wait(pilot, lambda: viewport.up_to_date and len(_images(written)) > 1)
+        await until(pilot, lambda: viewport.up_to_date and len(_images(written)) > 1)
         await pilot.pause(0.1)
         # Taken off, then the new size's image; never the old size's again.
         assert _images(written) == ["<clear>", f"<image {encoder.frames}>"] != before
@@ -88,7 +81,7 @@ async def test_only_a_repaint_of_the_pictures_cells_writes_the_image_again(confi
     app = BicepsApp(config, encoder=Numbered())
     async with app.run_test(size=(100, 30)) as pilot:
         viewport = app.query_one(Viewport)
-        await _wait(pilot, lambda: viewport.up_to_date)
+        await until(pilot, lambda: viewport.up_to_date)
         await pilot.pause(0.1)
         written: list[str] = []
         app._driver.write = written.append

@@ -11,6 +11,7 @@ from biceps.cli import main
 from biceps.tui.app import BicepsApp
 from biceps.tui.pacing import Pacer, cursor_question
 from biceps.tui.widgets.viewport import Viewport
+from waiting import until
 
 
 class Timers:
@@ -198,14 +199,6 @@ class Terminal:
         raise AssertionError("the picture never caught up")
 
 
-async def _wait(pilot, condition) -> None:
-    for _ in range(1000):
-        if condition():
-            return
-        await pilot.pause(0.01)
-    raise AssertionError("never happened")
-
-
 async def _a_while(pilot) -> None:
     for _ in range(20):
         await pilot.pause(0.01)
@@ -218,7 +211,7 @@ async def test_no_frame_is_made_until_the_terminal_has_taken_the_last(config):
         viewport = app.screen.query_one(Viewport)
         await terminal.catch_up(pilot, viewport)
         await pilot.press("right")  # a frame for this, then a question
-        await _wait(pilot, lambda: len(terminal.questions) > terminal.answered)
+        await until(pilot, lambda: len(terminal.questions) > terminal.answered)
         asked, shown = len(terminal.questions), viewport.border_title
         await pilot.press("right", "right")
         await _a_while(pilot)
@@ -226,7 +219,7 @@ async def test_no_frame_is_made_until_the_terminal_has_taken_the_last(config):
         assert viewport.border_title == shown
         assert len(terminal.questions) == asked
         terminal.answer()
-        await _wait(pilot, lambda: viewport.up_to_date)
+        await until(pilot, lambda: viewport.up_to_date)
         assert viewport.border_title.startswith(f"yaw {app.scene.view.yaw:g}°")
 
 
@@ -236,10 +229,10 @@ async def test_a_terminal_that_never_answers_still_gets_every_frame(config, monk
     terminal = Terminal(app)
     async with app.run_test(size=(100, 30)) as pilot:
         viewport = app.screen.query_one(Viewport)
-        await _wait(pilot, lambda: app.pacer.answers is False)
+        await until(pilot, lambda: app.pacer.answers is False)
         for _ in range(3):
             await pilot.press("right")
-            await _wait(pilot, lambda: viewport.up_to_date)
+            await until(pilot, lambda: viewport.up_to_date)
         assert len(terminal.questions) == 1
 
 
