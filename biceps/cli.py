@@ -21,12 +21,13 @@ import math
 import sys
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Iterator
+from typing import TYPE_CHECKING, Any, Callable, Iterator, get_args
 
 import click
 
 from biceps.configs import DEFAULT as DEFAULT_CONFIG
 from biceps.engine.errors import BicepsError
+from biceps.engine.settings import Graphics
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
@@ -55,7 +56,7 @@ class _FiniteFloat(click.ParamType):
 FINITE = _FiniteFloat()
 
 USAGE_ERROR = 2
-GRAPHICS = ["auto", "halfblocks", "kitty", "sixel", "iterm"]  # as engine/settings.py's Graphics
+GRAPHICS = list(get_args(Graphics))
 
 
 class _AppByDefault(click.Group):

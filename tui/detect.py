@@ -1,5 +1,5 @@
-"""What the terminal can show, asked before the app takes the screen, and the encoder that
-follows from it.
+"""What the terminal can show, asked before the app takes the screen, and what the app makes
+of the answers.
 
 :func:`ask` writes a few questions to the terminal at once and reads the answers:
 

@@ -9,6 +9,7 @@ and the cursor ends below it, as after any output. Free of Textual, like ``--ans
 
 from __future__ import annotations
 
+import os
 import shutil
 import sys
 from typing import Callable
@@ -17,14 +18,14 @@ import numpy as np
 
 from biceps.tui import detect, iterm, kitty, sixel
 
-PROTOCOLS = ("kitty", "sixel", "iterm")
 
 
 def image(protocol: str, frame: np.ndarray, columns: int, rows: int, colours: int) -> str:
     """``frame`` ((h, w, 3) uint8) as an image in ``protocol`` over ``columns x rows``
     cells from the cursor."""
     if protocol == "kitty":
-        return "".join(kitty.transmit(frame, 1, columns, rows))
+        # An id of this process's own: an id used before would take that picture away.
+        return "".join(kitty.transmit(frame, 0x4300_0000 | os.getpid(), columns, rows))
     if protocol == "sixel":
         return sixel.sixel_image(*sixel.quantised(frame, colours))
     return iterm.inline_image(iterm.png(frame), columns, rows)
