@@ -37,7 +37,7 @@ from biceps.engine.settings import (
     Shading,
     View,
 )
-from biceps.engine.skeleton import Skeleton, check_skeleton
+from biceps.engine.skeleton import Skeleton, skeleton_problem
 from biceps.engine.transforms import FRACTION, SHININESS, Light
 
 # Strict numbers: "1.5" is not a number and true is not 1 (an int is still a fine float).
@@ -96,29 +96,28 @@ class MuscleTable(_Table):
 
 
 class SkeletonTable(_Table):
-    """The arm's bones, as in :class:`Skeleton`, whose defaults these are."""
+    """The arm's bones and the muscle's attachments, as in :class:`Skeleton`, whose defaults
+    these are; the joint's range as one pair."""
 
     upper_arm: Positive = Skeleton.upper_arm
     origin_to_elbow: Positive = Skeleton.origin_to_elbow
+    origin_forward: Number = Skeleton.origin_forward
+    origin_lateral: Number = Skeleton.origin_lateral
     elbow_to_insertion: Positive = Skeleton.elbow_to_insertion
+    insertion_forward: Number = Skeleton.insertion_forward
+    insertion_lateral: Number = Skeleton.insertion_lateral
     forearm: Positive = Skeleton.forearm
     flexion_range: tuple[Degrees, Degrees] = (Skeleton.min_flexion, Skeleton.max_flexion)
 
     @classmethod
     def of(cls, skeleton: Skeleton) -> SkeletonTable:
-        return cls(
-            upper_arm=skeleton.upper_arm,
-            origin_to_elbow=skeleton.origin_to_elbow,
-            elbow_to_insertion=skeleton.elbow_to_insertion,
-            forearm=skeleton.forearm,
-            flexion_range=(skeleton.min_flexion, skeleton.max_flexion),
-        )
+        fields = asdict(skeleton)
+        return cls(flexion_range=(fields.pop("min_flexion"), fields.pop("max_flexion")), **fields)
 
     def skeleton(self) -> Skeleton:
-        low, high = self.flexion_range
-        return Skeleton(upper_arm=self.upper_arm, origin_to_elbow=self.origin_to_elbow,
-                        elbow_to_insertion=self.elbow_to_insertion, forearm=self.forearm,
-                        min_flexion=low, max_flexion=high)
+        fields = self.model_dump()
+        low, high = fields.pop("flexion_range")
+        return Skeleton(min_flexion=low, max_flexion=high, **fields)
 
 
 class ViewTable(_Table):
@@ -166,6 +165,7 @@ class RenderTable(_Table):
     shading: Shading = RenderSettings.shading
     ssaa: Annotated[int, Strict(), _within(SUPERSAMPLING)] = RenderSettings.ssaa
     muscle_colour: Colour = RenderSettings.muscle_colour
+    tendon_colour: Colour = RenderSettings.tendon_colour
     bone_colour: Colour = RenderSettings.bone_colour
     background: Colour = RenderSettings.background
     graphics: Graphics = RenderSettings.graphics
@@ -249,10 +249,10 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
     def fail(location: tuple, message: str) -> ConfigError:
         return ConfigError(_located(path, source, location, message))
 
-    try:
-        check_skeleton(skeleton)
-    except RefusedChange as error:
-        raise fail(("skeleton", "flexion_range"), str(error).removeprefix("skeleton ")) from None
+    problem = skeleton_problem(skeleton)
+    if problem is not None:
+        field, reason = problem
+        raise fail(("skeleton", field), reason)
     if muscle_table.flexion is not None:
         if not skeleton.min_flexion <= muscle_table.flexion <= skeleton.max_flexion:
             raise fail(

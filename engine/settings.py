@@ -168,18 +168,20 @@ SUPERSAMPLING = Limits(1, 4)
 @dataclass(frozen=True)
 class RenderSettings:
     """How the picture is drawn: the vertices around each part's axis, the shading model,
-    the supersampling factor (``ssaa`` x ``ssaa`` samples a pixel), the colours, and how
-    the app sends it to the terminal (``graphics``)."""
+    the supersampling factor (``ssaa`` x ``ssaa`` samples a pixel), the colours (the
+    muscle's belly, its tendons, the bones, the background), and how the app sends it to
+    the terminal (``graphics``)."""
 
     segments: int = 48
     shading: str = "gouraud"
     ssaa: int = 1
     muscle_colour: str = "#b4483e"
+    tendon_colour: str = "#e9e4ec"
     bone_colour: str = "#e3d9c0"
     background: str = "#12161c"
     graphics: str = "halfblocks"
 
     def __post_init__(self) -> None:
         settle(self, "render", segments=integer(SEGMENTS), shading=one_of(SHADINGS),
-               ssaa=integer(SUPERSAMPLING), muscle_colour=colour, bone_colour=colour,
-               background=colour, graphics=one_of(get_args(Graphics)))
+               ssaa=integer(SUPERSAMPLING), muscle_colour=colour, tendon_colour=colour,
+               bone_colour=colour, background=colour, graphics=one_of(get_args(Graphics)))

@@ -12,6 +12,7 @@ from click.testing import CliRunner
 from biceps.cli import main
 from biceps.engine.config import load_config, save_config
 from biceps.engine.errors import BicepsError, ConfigError, FileError
+from biceps.engine.skeleton import Skeleton
 from biceps.engine.config import BUNDLED
 
 INVALID = Path(__file__).resolve().parents[1] / "invalid_configs"
@@ -81,8 +82,16 @@ def test_default_config_is_a_realistic_biceps():
     assert 150 <= arm.muscle.volume <= 250
     assert arm.muscle.growth[0] == arm.muscle.growth[-1] == 0
     shortest, longest = arm.length_range()
-    assert shortest == pytest.approx(27.05, abs=0.01) and longest == pytest.approx(35.6)
+    # SPEC 2.3: about 35.6 cm straight to 27.1 cm fully bent; arm26's BIClong shortens by
+    # 8.39 cm over the range.
+    assert shortest == pytest.approx(27.1, abs=0.2) and longest == pytest.approx(35.6, abs=0.3)
+    assert longest - shortest == pytest.approx(8.39, abs=0.2)
     assert 12 <= np.pi * arm.muscle.max_radius**2 <= 15  # mid-arm cross-section, cm^2
+
+
+def test_the_default_skeleton_is_the_bundled_files():
+    # The file spells out every key of [skeleton], so a reader sees the model's values.
+    assert load_config(BUNDLED / "biceps.toml").arm.skeleton == Skeleton()
 
 
 def test_fine_config_has_60_nodes_and_toy_has_4():
@@ -129,7 +138,7 @@ def test_saving_keeps_the_users_comments_and_layout(user_copy):
     _save(config, config.arm.at_length(31.0), view=replace(config.view, yaw=40.0))
     text = user_copy.read_text()
     assert "# A human biceps brachii on the arm skeleton of OpenSim's arm26 model." in text
-    assert "upper_arm = 29.1            # humerus, elbow to shoulder" in text
+    assert "upper_arm = 29.1            # humerus, the elbow's centre to the humeral head's" in text
     assert "length = 31.0" in text
     assert "yaw = 40.0" in text
     assert "nodes = [\n" in text  # still one node per line
