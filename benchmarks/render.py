@@ -2,9 +2,11 @@
 
     .venv/bin/python benchmarks/render.py [--quick]
 
-The scene is the arm (muscle, humerus, forearm and elbow from ``engine/mesh.py``) at mid
-flexion, turned as the default view turns it (yaw -25, pitch 10 degrees) and tessellated to
-about 5k, 20k and 100k triangles, seen two ways: "arm" frames the whole arm, as the app
+The scene is a fixed arm (a muscle, two rods and a ball for the elbow, from the meshes of
+``engine/mesh.py``, as the app drew it before it had bones; fixed so that the figures of
+one version compare with another's) at mid flexion, turned as the default view turns it
+(yaw -25, pitch 10 degrees) and tessellated to about 5k, 20k and 100k triangles, seen two
+ways: "arm" frames the whole arm, as the app
 does, and the thin arm then covers a few percent of the picture; "belly" frames the middle
 of the muscle, which then covers about 30 % (a fill-rate test). Each row gives the share of
 pixels drawn in both views. The baselines come first, measured in the same run (clearing
@@ -24,9 +26,8 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from biceps.engine.mesh import Mesh, arm_meshes  # noqa: E402
+from biceps.engine.mesh import Mesh, cylinder_mesh, muscle_mesh, sphere_mesh  # noqa: E402
 from biceps.engine.render import Renderer, clear  # noqa: E402
-from biceps.engine.skeleton import Skeleton  # noqa: E402
 from biceps.engine.transforms import Light, frame_camera, model_matrix, transform_points  # noqa: E402
 
 SIZES = [(200, 120), (640, 360), (1920, 1080), (3840, 2160)]
@@ -37,14 +38,22 @@ MUSCLE, BONE = (0.706, 0.282, 0.243), (0.890, 0.851, 0.753)
 
 def arm_scene(target: int) -> tuple[Mesh, np.ndarray]:
     """The arm with about ``target`` triangles, and its albedo (n, 3) float32."""
-    skeleton, length = Skeleton(), 33.0
-    pose = skeleton.pose(length)
+    length = 33.0
+    # The muscle from 30.2 cm up the humerus to 5.4 cm down the forearm, 33 cm long: the
+    # elbow's interior angle is then arccos((30.2^2 + 5.4^2 - 33^2) / (2 30.2 5.4)).
+    angle = math.acos((30.2**2 + 5.4**2 - length**2) / (2 * 30.2 * 5.4))
+    forearm = np.array([math.sin(angle), math.cos(angle), 0.0])
+    origin, elbow = np.array([0.0, 30.2, 0.0]), np.zeros(3)
     for segments in range(8, 1024, 2):
         # As many muscle nodes as make its facets roughly square.
         nodes = max(len(BICEPS), round(segments * length / (2 * math.pi * 1.6)))
         radii = np.interp(np.linspace(0, 1, nodes), np.linspace(0, 1, len(BICEPS)), BICEPS)
-        parts = arm_meshes(pose.shoulder, pose.origin, pose.elbow, pose.insertion, pose.hand,
-                           radii, length, segments)
+        parts = {
+            "muscle": muscle_mesh(radii, length, origin, 5.4 * forearm, segments),
+            "humerus": cylinder_mesh(elbow, origin, 1.0, segments),
+            "forearm": cylinder_mesh(elbow, 25.4 * forearm, 0.8, segments),
+            "elbow": sphere_mesh(elbow, 1.4, segments),
+        }
         if sum(len(part.triangles) for part in parts.values()) >= target:
             break
     albedo = np.concatenate([

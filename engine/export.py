@@ -13,7 +13,7 @@ from PIL import Image
 from biceps.engine.arm import Arm
 from biceps.engine.errors import FileError, shown
 from biceps.engine.files import write_atomically
-from biceps.engine.mesh import arm_parts
+from biceps.engine.anatomy import arm_parts
 
 # zlib level 1: within a few per cent of level 6's size on these pictures (a flat
 # background, smooth shading) at a fraction of the time, which dominates a headless snapshot.
@@ -75,7 +75,8 @@ def write_png(path: str | os.PathLike, frame: np.ndarray) -> None:
 
 
 def write_mesh(path: str | os.PathLike, arm: Arm, segments: int) -> None:
-    """Write the arm in its current pose as named parts (muscle, humerus, forearm, elbow).
+    """Write the arm in its current pose as named parts (``anatomy.PARTS``: the muscle and
+    each bone).
 
     World space, centimetres; the format follows the suffix (OBJ, STL, PLY or binary glTF).
     STL and PLY hold a single mesh, so there the parts are merged.

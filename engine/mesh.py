@@ -4,8 +4,9 @@ Every shape here is one profile revolved about an axis: a column of points ``(x,
 (distance along the axis, distance from it) with the outward normal ``(nx, nr)`` of the
 profile at each point. The first and last points lie on the axis and become single pole
 vertices; every other point becomes a ring of ``segments`` vertices. Revolving such a
-profile gives one closed, watertight, consistently wound surface, and that one routine
-(`_revolve`) makes the muscle, the bones and the elbow.
+profile gives one closed, watertight, consistently wound surface (`_assemble` joins the
+rings and the poles), which makes the muscle, the bones' parts, rods and spheres. The
+muscle's rings may also be moved sideways within their planes, to lie clear of the bones.
 
 Vertices are ordered from the start pole, ring by ring along the profile, to the end pole.
 """
@@ -15,12 +16,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import TYPE_CHECKING
 
 import numpy as np
-
-if TYPE_CHECKING:
-    from biceps.engine.arm import Arm
 
 DEFAULT_SEGMENTS = 48
 """Vertices around the axis: a 48-gon keeps 99.7 % of its circle's area (k sin(2 pi/k) / 2 pi)."""
@@ -76,6 +73,7 @@ def muscle_mesh(
     segments: int = DEFAULT_SEGMENTS,
     caps: str = "round",
     cap_rings: int | None = None,
+    offsets=None,
 ) -> Mesh:
     """The muscle's surface: frusta through the node rings, closed at both ends.
 
@@ -87,30 +85,46 @@ def muscle_mesh(
     cap_rings: latitude rings per hemisphere, counting the end node's ring, so also the
         number of bands from that ring to the pole; default ``segments / 4`` (at least 2),
         which makes the caps' facets about as wide as they are tall.
+    offsets: (m, 3) float64, or None for the straight muscle: how far each of m body rings,
+        equally spaced from start to end, is moved sideways, within its own plane (the part
+        along the axis is dropped). ``m - 1`` must be a multiple of ``n - 1``: the rings
+        between two nodes take radii on the straight line between theirs, so the profile is
+        the nodes' own. The caps move with the end rings. Moving circular sections within
+        their planes keeps the solid's volume (Cavalieri's principle), and the mesh's too:
+        every band still lies between two parallel polygons, and moving either only
+        translates the band's middle section, so its volume (the prismatoid formula,
+        ``h (A0 + 4 Am + A1) / 6``) stays the same.
 
-    Rings: ``n`` (flat) or ``n + 2 (cap_rings - 1)`` (round); triangles: twice ``segments``
+    Rings: ``m`` (flat) or ``m + 2 (cap_rings - 1)`` (round); triangles: twice ``segments``
     times the number of rings.
     """
     radii = _positive_radii(radii)
     if len(radii) < 2:
         raise ValueError(f"a muscle needs at least 2 nodes, got {len(radii)}")
     _check_segments(segments)
+    if caps not in ("round", "flat"):
+        raise ValueError(f'caps must be "round" or "flat", got {caps!r}')
     length = float(length)
     if not (math.isfinite(length) and length > 0):
         raise ValueError(f"length must be positive, got {length}")
     axis = _unit_axis(start, end)
-    body = _muscle_body(radii, length, caps)
+    start = np.asarray(start, dtype=np.float64)
+    offsets = _ring_offsets(offsets, len(radii), axis)
+    body, normals = _muscle_body(radii, length, offsets, axis, segments, caps)
+    body += start
     if caps == "flat":
-        profile = np.concatenate([[[0.0, 0.0, -1.0, 0.0]], body, [[length, 0.0, 1.0, 0.0]]])
-    else:
-        sin, cos = _quarter_circle(_cap_rings(segments, cap_rings))
-        # Elevations from the equator (excluded: it is the end node's ring) to the pole.
-        profile = np.concatenate([
-            _arc(0.0, radii[0], -sin[:0:-1], cos[:0:-1]),
-            body,
-            _arc(length, radii[-1], sin[1:], cos[1:]),
-        ])
-    return _revolve(profile, np.asarray(start, dtype=np.float64), axis, segments)
+        poles = start + offsets[[0, -1]] + np.outer([0.0, length], axis)
+        return _assemble(poles, [body], [normals], np.array([-1.0, 1.0]), axis)
+    sin, cos = _quarter_circle(_cap_rings(segments, cap_rings))
+    # Elevations from the equator (excluded: it is the end node's ring) to the pole.
+    first = _arc(0.0, radii[0], -sin[:0:-1], cos[:0:-1])
+    last = _arc(length, radii[-1], sin[1:], cos[1:])
+    rings = [_rings(first[1:], start + offsets[0], axis, segments), (body, normals),
+             _rings(last[:-1], start + offsets[-1], axis, segments)]
+    poles = np.array([start + offsets[0] + first[0, 0] * axis,
+                      start + offsets[-1] + last[-1, 0] * axis])
+    return _assemble(poles, [v for v, _ in rings], [n for _, n in rings],
+                     np.array([-1.0, 1.0]), axis)
 
 
 def cylinder_mesh(
@@ -138,85 +152,79 @@ def sphere_mesh(center, radius: float, segments: int = DEFAULT_SEGMENTS) -> Mesh
     return _revolve(profile, center, np.array([0.0, 1.0, 0.0]), segments)
 
 
-def arm_meshes(
-    shoulder,
-    origin,
-    elbow,
-    insertion,
-    hand,
-    radii,
-    muscle_length: float,
-    segments: int = DEFAULT_SEGMENTS,
-    humerus_radius: float = 1.0,
-    forearm_radius: float = 0.8,
-    elbow_radius: float = 1.4,
-) -> dict[str, Mesh]:
-    """The muscle and the skeleton, in world space: keys "muscle", "humerus", "forearm", "elbow".
+def revolved_mesh(profile, start, axis, segments: int = DEFAULT_SEGMENTS) -> Mesh:
+    """The closed surface of revolution of ``profile`` about the line from ``start`` along
+    ``axis`` ((3,) each, the axis need not be unit).
 
-    shoulder, origin, elbow, insertion, hand: (3,) float64 points from the skeleton.
-    radii: (n,) float64 node radii; muscle_length: the muscle's length (|insertion - origin|).
-    Radii in centimetres; the defaults are an adult's humerus, forearm and elbow, roughly.
+    profile: (k, 2) float64, k >= 3, rows (distance along the axis, radius), from one pole
+    (radius 0) to the other, the radii between positive. Each point's normal is the mean of
+    the normals of the two profile segments that meet there, so a smooth profile shades
+    smoothly and a corner shows.
     """
-    humerus_end = _bone_end(elbow, shoulder, origin)
-    forearm_end = _bone_end(elbow, hand, insertion)
-    return {
-        "muscle": muscle_mesh(radii, muscle_length, origin, insertion, segments),
-        "humerus": cylinder_mesh(elbow, humerus_end, humerus_radius, segments),
-        "forearm": cylinder_mesh(elbow, forearm_end, forearm_radius, segments),
-        "elbow": sphere_mesh(elbow, elbow_radius, segments),
-    }
+    profile = np.asarray(profile, dtype=np.float64)
+    if profile.ndim != 2 or profile.shape[1] != 2 or len(profile) < 3:
+        raise ValueError(f"a profile is (k, 2) with k >= 3, got shape {profile.shape}")
+    x, r = profile.T
+    if r[0] != 0.0 or r[-1] != 0.0 or not np.all(r[1:-1] > 0):
+        raise ValueError("a profile runs from a pole (radius 0) to a pole, radii between > 0")
+    _check_segments(segments)
+    steps = np.diff(profile, axis=0)
+    sides = np.column_stack([-steps[:, 1], steps[:, 0]])  # (dx, dr) turned a quarter: outward
+    sides /= np.hypot(sides[:, :1], sides[:, 1:])
+    normals = sides[:-1] + sides[1:]
+    normals /= np.hypot(normals[:, :1], normals[:, 1:])
+    rows = np.column_stack([x, r, np.concatenate([[-1.0], normals[:, 0], [1.0]]),
+                            np.concatenate([[0.0], normals[:, 1], [0.0]])])
+    axis = _unit_axis(np.zeros(3), axis)
+    return _revolve(rows, np.asarray(start, dtype=np.float64), axis, segments)
 
 
-def arm_parts(arm: Arm, segments: int) -> dict[str, Mesh]:
-    """The arm in its current pose: "muscle", "humerus", "forearm" and "elbow", world space."""
-    pose = arm.pose
-    return arm_meshes(
-        pose.shoulder, pose.origin, pose.elbow, pose.insertion, pose.hand,
-        arm.muscle.radii, arm.length, segments,
-    )  # fmt: skip
+def _ring_offsets(offsets, nodes: int, axis: np.ndarray) -> np.ndarray:
+    """The body rings' sideways offsets (m, 3), within their planes: zeros, one per node, if
+    ``offsets`` is None."""
+    if offsets is None:
+        return np.zeros((nodes, 3))
+    offsets = np.array(offsets, dtype=np.float64)
+    if offsets.ndim != 2 or offsets.shape[1] != 3 or (len(offsets) - 1) % (nodes - 1):
+        raise ValueError(
+            f"offsets must be (m, 3) with m - 1 a multiple of the {nodes - 1} segments, "
+            f"got shape {offsets.shape}"
+        )
+    if not np.all(np.isfinite(offsets)):
+        raise ValueError("offsets must be finite")
+    return offsets - np.outer(offsets @ axis, axis)
 
 
-def _bone_end(elbow, free_end, attachment) -> np.ndarray:
-    """The far end of a bone (3,): its free end, or further along the bone to reach the
-    attachment's level, since the muscle's origin may sit beyond the humerus, on the
-    shoulder blade, and a tendon should end on bone."""
-    elbow = np.asarray(elbow, dtype=np.float64)
-    along = np.subtract(free_end, elbow, dtype=np.float64)
-    reach = np.linalg.norm(along)
-    if reach == 0:
-        raise ValueError("a bone's free end coincides with the elbow")
-    direction = along / reach
-    return elbow + direction * max(reach, float(np.dot(np.subtract(attachment, elbow), direction)))
+def _muscle_body(radii: np.ndarray, length: float, offsets: np.ndarray, axis: np.ndarray,
+                 segments: int, caps: str) -> tuple[np.ndarray, np.ndarray]:
+    """The body's rings: vertices and unit normals, each (m, segments, 3).
 
-
-def _muscle_body(radii: np.ndarray, length: float, caps: str) -> np.ndarray:
-    """The profile (n, 4) of the node rings: rows ``(x, r, nx, nr)``.
-
-    A frustum's side tilts its normal back by atan(dr/dx); a node's normal is the
-    normalised mean of the two sides that meet there, so shading is smooth across it.
+    A frustum's side tilts its normal back by atan(dr/dx); a ring moved sideways tilts the
+    side by as much again where its spoke points along the move, so along spoke ``s`` a
+    band's slope is ``(dr + do.s) / dx``. A ring's normal is the normalised mean of the two
+    sides that meet there, so shading is smooth across it.
     """
-    if caps not in ("round", "flat"):
-        raise ValueError(f'caps must be "round" or "flat", got {caps!r}')
-    n = len(radii)
-    slopes = np.diff(radii) / (length / (n - 1))
-    sides = np.empty((n + 1, 2))  # the sides' normals (nx, nr), and the caps' at the ends
-    sides[1:-1, 1] = 1.0 / np.sqrt(1.0 + slopes * slopes)
-    sides[1:-1, 0] = -slopes * sides[1:-1, 1]
+    m = len(offsets)
+    x = np.linspace(0.0, length, m)  # exact at both ends
+    r = np.interp(x, np.linspace(0.0, length, len(radii)), radii)
+    spokes = _spokes(axis, segments)
+    slopes = (np.diff(r)[:, None] + np.diff(offsets, axis=0) @ spokes.T) / np.diff(x)[:, None]
+    sides = np.empty((m + 1, segments, 3))  # each band's normals, and the caps' at the ends
+    sides[1:-1] = spokes[None] - slopes[..., None] * axis
     if caps == "round":
         # A hemisphere meets the frustum along its equator, where its normal is radial:
         # averaging that with the side normal is the interior nodes' rule applied to a
         # neighbour of slope zero, so the shading runs on smoothly into the cap.
-        sides[[0, -1]] = (0.0, 1.0)
+        sides[[0, -1]] = spokes
     else:
         # The rim of a flat cap is a real right-angle edge: its ring keeps the side's exact
         # normal (the disk then shades like a shallow dome, which only the test mode shows).
         sides[[0, -1]] = sides[[1, -2]]
-    body = np.empty((n, 4))
-    body[:, 0] = np.arange(n) / (n - 1) * length  # exact at both ends
-    body[:, 1] = radii
-    normals = np.add(sides[:-1], sides[1:], out=body[:, 2:])
-    normals /= np.hypot(normals[:, :1], normals[:, 1:])
-    return body
+    sides /= np.linalg.norm(sides, axis=2, keepdims=True)
+    normals = sides[:-1] + sides[1:]
+    normals /= np.linalg.norm(normals, axis=2, keepdims=True)
+    vertices = (x[:, None] * axis + offsets)[:, None, :] + r[:, None, None] * spokes
+    return vertices, normals
 
 
 def _arc(x: float, radius: float, sin: np.ndarray, cos: np.ndarray) -> np.ndarray:
@@ -242,24 +250,43 @@ def _revolve(profile: np.ndarray, start: np.ndarray, axis: np.ndarray, segments:
     the k - 2 rows between them become rings, vertex ``j`` at angle ``2 pi j / segments``
     counter-clockwise about the axis.
     """
+    vertices, normals = _rings(profile[1:-1], start, axis, segments)
+    poles = start + np.outer(profile[[0, -1], 0], axis)
+    return _assemble(poles, [vertices], [normals], np.sign(profile[[0, -1], 2]), axis)
+
+
+def _rings(profile: np.ndarray, centre: np.ndarray, axis: np.ndarray,
+           segments: int) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices and normals (k, segments, 3) of the rings of ``profile`` (k, 4) rows
+    ``(x, r, nx, nr)``, revolved about the line through ``centre`` along ``axis``."""
+    spokes = _spokes(axis, segments)
+    x, r, nx, nr = profile.T
+    vertices = (centre + x[:, None] * axis)[:, None, :] + r[:, None, None] * spokes
+    normals = nr[:, None, None] * spokes + (nx[:, None] * axis)[:, None, :]
+    return vertices, normals
+
+
+def _assemble(poles: np.ndarray, vertices: list, normals: list, pole_sides: np.ndarray,
+              axis: np.ndarray) -> Mesh:
+    """One closed mesh: a pole (3,) at each end of ``poles`` (2, 3), and between them the
+    rings of ``vertices`` and ``normals`` (lists of (k, segments, 3)), in order; each pole's
+    normal is the axis times its entry of ``pole_sides`` (2,) (-1 or 1)."""
+    rings = np.concatenate(vertices)
+    segments = rings.shape[1]
+    return Mesh(
+        np.concatenate([poles[:1], rings.reshape(-1, 3), poles[1:]]),
+        np.concatenate([pole_sides[:1, None] * axis, np.concatenate(normals).reshape(-1, 3),
+                        pole_sides[1:, None] * axis]),
+        _closed_tube(len(rings), segments),
+    )
+
+
+def _spokes(axis: np.ndarray, segments: int) -> np.ndarray:
+    """(segments, 3) unit radial directions about ``axis``, vertex ``j`` at angle
+    ``2 pi j / segments`` counter-clockwise."""
     u, w = _ring_frame(axis)
     cos, sin = _unit_circle(segments)
-    spokes = cos[:, None] * u + sin[:, None] * w  # (segments, 3) unit radial directions
-    x, r, nx, nr = profile[1:-1].T
-    rings = len(x)
-
-    vertices = np.empty((rings * segments + 2, 3))
-    normals = np.empty_like(vertices)
-    ring_vertices = vertices[1:-1].reshape(rings, segments, 3)
-    np.multiply(r[:, None, None], spokes, out=ring_vertices)
-    ring_vertices += (start + x[:, None] * axis)[:, None, :]
-    ring_normals = normals[1:-1].reshape(rings, segments, 3)
-    np.multiply(nr[:, None, None], spokes, out=ring_normals)
-    ring_normals += (nx[:, None] * axis)[:, None, :]
-    (x0, _, nx0, _), (x1, _, nx1, _) = profile[[0, -1]].tolist()
-    vertices[0], vertices[-1] = start + x0 * axis, start + x1 * axis
-    normals[0], normals[-1] = math.copysign(1.0, nx0) * axis, math.copysign(1.0, nx1) * axis
-    return Mesh(vertices, normals, _closed_tube(rings, segments))
+    return cos[:, None] * u + sin[:, None] * w
 
 
 @lru_cache(maxsize=64)

@@ -1,25 +1,31 @@
 """What one picture shows: the arm, how it is viewed and lit, and how it is rendered.
 
-The camera frames a sphere that holds the arm in every pose its joint allows, centred on a
-fixed pivot, so contracting the muscle bends the arm in place instead of re-zooming, and
-turning the model about that pivot never swings it out of view.
+The camera frames the arm as it is posed and turned: it looks at the middle of the turned
+arm's extent, from as close as keeps every vertex within ``FILL`` of the picture's edges
+(`transforms.fit_points`), so the arm is as large as the picture allows, centred, in every
+pose. The view turns the model about the centre of its bounding box, moves it by its offset,
+then scales it about the point the camera looks at: zooming grows the picture about its
+own centre, wherever the model was moved, and never pushes the middle of the arm out.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from functools import lru_cache
 
 import numpy as np
 
 from biceps.engine import coldstart
+from biceps.engine.anatomy import arm_parts, tendon_share
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, rgb
-from biceps.engine.mesh import Mesh, arm_parts
+from biceps.engine.mesh import Mesh
 from biceps.engine.render import Renderer
 from biceps.engine.settings import RenderSettings, View
-from biceps.engine.skeleton import Skeleton
-from biceps.engine.transforms import Camera, Light, frame_sphere, model_matrix
+from biceps.engine.transforms import (Camera, Light, fit_points, model_matrix, scale_matrix,
+                                      transform_points, translation_matrix)
+
+FILL = 0.9
+"""The share of the picture's half-width or half-height the arm reaches, whichever is less."""
 
 
 @dataclass(frozen=True)
@@ -53,13 +59,16 @@ class Scene:
         return replace(self, arm=arm)
 
 
-def scene_mesh(arm: Arm, segments: int, muscle_colour: str,
-               bone_colour: str) -> tuple[Mesh, np.ndarray]:
-    """The arm as one world-space mesh, and its per-vertex albedo (n, 3) float32 in [0, 1]."""
-    parts = arm_parts(arm, segments)
-    colours = {"muscle": _unit_rgb(muscle_colour)}
-    albedo = [np.broadcast_to(colours.get(name, _unit_rgb(bone_colour)), (len(part.vertices), 3))
-              for name, part in parts.items()]
+def scene_mesh(arm: Arm, render: RenderSettings) -> tuple[Mesh, np.ndarray]:
+    """The arm as one world-space mesh, and its per-vertex albedo (n, 3) float32 in [0, 1]:
+    the bones in the bone colour, the muscle's belly in the muscle colour blending into the
+    tendon colour towards its ends."""
+    parts = arm_parts(arm, render.segments)
+    bone = _unit_rgb(render.bone_colour)
+    albedo = [np.broadcast_to(bone, (len(part.vertices), 3)) for part in parts.values()]
+    tendon = tendon_share(arm, parts["muscle"])[:, None]
+    albedo[0] = (1.0 - tendon) * _unit_rgb(render.muscle_colour) + tendon * _unit_rgb(
+        render.tendon_colour)
     return Mesh.concatenate(list(parts.values())), np.concatenate(albedo).astype(np.float32)
 
 
@@ -67,27 +76,16 @@ def _unit_rgb(colour: str) -> np.ndarray:
     return np.array(rgb(colour), dtype=np.float32) / 255.0
 
 
-@lru_cache(maxsize=16)
-def reach(skeleton: Skeleton) -> tuple[np.ndarray, float]:
-    """The centre (3,) and radius (cm) of a sphere holding the arm in every allowed pose."""
-    flexions = np.linspace(skeleton.min_flexion, skeleton.max_flexion, 33)
-    hands = [skeleton.pose(skeleton.length_at(f)).hand for f in flexions]
-    top = max(skeleton.upper_arm, skeleton.origin_to_elbow)
-    points = np.array([[0.0, top, 0.0], [0.0, 0.0, 0.0], *hands])
-    centre = (points.min(axis=0) + points.max(axis=0)) / 2
-    margin = 3.0  # the muscle's belly and the bones' radii stand out of the skeleton's lines
-    return centre, float(np.linalg.norm(points - centre, axis=1).max()) + margin
-
-
-def view_camera(scene: Scene, aspect: float) -> tuple[Camera, np.ndarray]:
-    """The camera for ``scene`` at this width / height, and the model matrix (4, 4)."""
-    centre, radius = reach(scene.arm.skeleton)
-    view = scene.view
-    camera = frame_sphere(centre, radius, aspect, view.fov, view.scale)
-    model = model_matrix(
-        np.radians(view.yaw), np.radians(view.pitch), np.radians(view.roll),
-        view.scale, view.offset, pivot=centre,
-    )  # fmt: skip
+def view_camera(view: View, vertices: np.ndarray, aspect: float) -> tuple[Camera, np.ndarray]:
+    """The camera framing ``vertices`` (n, 3), world space at rest, turned by ``view``, at
+    this width / height; and the model matrix (4, 4) that turns, moves and scales them."""
+    pivot = (vertices.min(axis=0) + vertices.max(axis=0)) / 2.0
+    turn = model_matrix(np.radians(view.yaw), np.radians(view.pitch), np.radians(view.roll),
+                        pivot=pivot)
+    camera = fit_points(transform_points(turn, vertices), aspect, view.fov, FILL, view.scale)
+    target = np.array(camera.target)
+    model = (translation_matrix((1.0 - view.scale) * target) @ scale_matrix(view.scale)
+             @ translation_matrix(view.offset) @ turn)
     return camera, model
 
 
@@ -106,7 +104,7 @@ class SceneRenderer:
     def render(self, scene: Scene, width: int, height: int) -> np.ndarray:
         """The picture of ``scene``: (height, width, 3) uint8, valid until the next call."""
         mesh, albedo = self._mesh_of(scene)
-        camera, model = view_camera(scene, width / height)
+        camera, model = view_camera(scene.view, mesh.vertices, width / height)
         return self._renderer.render(
             mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
             scene.light, width, height, shading=scene.render.shading,
@@ -119,9 +117,9 @@ class SceneRenderer:
         render = scene.render
         # The arm compares its muscle by identity (a new muscle is a new object), and the
         # key holds the arm, so the identity cannot be reused by another.
-        key = (scene.arm, render.segments, render.muscle_colour, render.bone_colour)
+        key = (scene.arm, render.segments, render.muscle_colour, render.tendon_colour,
+               render.bone_colour)
         if key != self._mesh_key:
-            self._mesh = scene_mesh(scene.arm, render.segments, render.muscle_colour,
-                                    render.bone_colour)
+            self._mesh = scene_mesh(scene.arm, render)
             self._mesh_key = key
         return self._mesh

@@ -214,23 +214,32 @@ def frame_camera(bounds_min, bounds_max, aspect: float, fov_y_deg: float = 35.0,
                   near=near, far=far)
 
 
-def frame_sphere(centre, radius: float, aspect: float, fov_y_deg: float = 35.0,
-                 scale: float = 1.0) -> Camera:
-    """A camera on the ``+z`` side of a sphere, looking down ``-z`` at its centre, as close
-    as it can be with the whole sphere in view: it touches the narrower pair of edges.
+def fit_points(points, aspect: float, fov_y_deg: float = 35.0, fill: float = 0.9,
+               scale: float = 1.0) -> Camera:
+    """The tightest centred framing of ``points`` (n, 3) (world space): a camera on their
+    ``+z`` side looking down ``-z`` at the middle of their ``x`` and ``y`` extents, as close
+    as it can be with every point within ``fill`` of the view's half-width and half-height.
 
-    centre: (3,) world space; radius in cm; aspect: width / height of the view. ``scale``
-    (the model's zoom) only pushes the far plane out so a scaled-up model is not cut off.
+    aspect: width / height of the view. ``scale`` (the model's zoom about the target) only
+    pushes the far plane out so a scaled-up model is not cut off.
 
-    A sphere seen from ``d`` away fills a cone of half-angle ``asin(R / d)``, so it fits a
-    view of half-angle ``h`` from ``d = R / sin(h)``.
+    From an eye at height ``e`` above the target, a point ``(x, y, z)`` is in view when
+    ``|x - cx| <= (e - z) tan_x`` and ``|y - cy| <= (e - z) tan_y``: the least ``e`` is the
+    largest of ``z + |x - cx| / tan_x`` and ``z + |y - cy| / tan_y`` over the points, exact
+    in perspective.
     """
-    centre = np.asarray(centre, dtype=np.float64)
-    half_y = math.radians(fov_y_deg) / 2.0
-    half = min(half_y, math.atan(math.tan(half_y) * aspect))
-    distance = radius / math.sin(half)
+    points = np.asarray(points, dtype=np.float64)
+    low, high = points.min(axis=0), points.max(axis=0)
+    centre = (low + high) / 2.0
+    tan_y = math.tan(math.radians(fov_y_deg) / 2.0) * fill
+    tan_x = tan_y * aspect
+    off = np.abs(points[:, :2] - centre[:2])
+    eye_z = float(np.max(np.maximum(points[:, 2] + off[:, 0] / tan_x,
+                                    points[:, 2] + off[:, 1] / tan_y)))
+    distance = eye_z - centre[2]
+    reach = float(np.linalg.norm(high - low)) / 2.0
     return Camera(
-        eye=tuple(float(c) for c in centre + [0.0, 0.0, distance]),
+        eye=(float(centre[0]), float(centre[1]), eye_z),
         target=tuple(float(c) for c in centre), fov_y_deg=fov_y_deg,
-        near=0.05 * distance, far=distance + 8.0 * radius * max(scale, 1.0),
+        near=0.05 * distance, far=distance + 8.0 * reach * max(scale, 1.0),
     )

@@ -9,9 +9,9 @@ from hypothesis import strategies as st
 from biceps.engine.mesh import (
     DEFAULT_SEGMENTS,
     Mesh,
-    arm_meshes,
     cylinder_mesh,
     muscle_mesh,
+    revolved_mesh,
     sphere_mesh,
 )
 
@@ -33,6 +33,21 @@ lengths = st.floats(0.5, 50.0)
 # A random profile, placed from a random start along a random axis: @given(**placed, ...).
 placed = {"radii": radii_lists, "start": points, "axis": directions, "length": lengths}
 slow = settings(deadline=None)
+
+
+@st.composite
+def ring_offsets(draw, nodes: int) -> np.ndarray:
+    """Random sideways moves (m, 3) for rings 1 to 4 per segment (the mesh keeps only their
+    part within the rings' planes), up to 5 cm each way."""
+    per_segment = draw(st.integers(1, 4))
+    count = (nodes - 1) * per_segment + 1
+    values = draw(st.lists(st.floats(-5.0, 5.0), min_size=3 * count, max_size=3 * count))
+    return np.array(values).reshape(count, 3)
+
+
+def moved_sideways(data, radii):
+    """Offsets drawn for ``radii``, or None (the straight muscle)."""
+    return data.draw(st.none() | ring_offsets(len(radii)), label="offsets")
 
 
 def as_trimesh(mesh: Mesh) -> trimesh.Trimesh:
@@ -63,11 +78,14 @@ def axial_and_radial(mesh: Mesh, start, axis):
     segments=st.integers(3, 40),
     caps=st.sampled_from(["round", "flat"]),
     cap_rings=st.none() | st.integers(1, 8),
+    data=st.data(),
 )
 def test_muscle_is_one_closed_outward_surface(
-    radii, start, axis, length, segments, caps, cap_rings
+    radii, start, axis, length, segments, caps, cap_rings, data
 ):
-    mesh = muscle_mesh(radii, length, start, start + length * axis, segments, caps, cap_rings)
+    offsets = moved_sideways(data, radii)
+    mesh = muscle_mesh(radii, length, start, start + length * axis, segments, caps, cap_rings,
+                       offsets)
     closed = as_trimesh(mesh)
     assert closed.is_watertight
     assert closed.is_winding_consistent
@@ -77,13 +95,16 @@ def test_muscle_is_one_closed_outward_surface(
 
 
 @slow
-@given(**placed, segments=st.integers(3, 64))
+@given(**placed, segments=st.integers(3, 64), data=st.data())
 def test_flat_capped_volume_is_the_frusta_volume_of_the_polygon(
-    radii, start, axis, length, segments
+    radii, start, axis, length, segments, data
 ):
     # Each band between two aligned regular k-gons is a prismatoid: its volume is exactly
-    # the frustum's times the k-gon's share of the circle.
-    mesh = muscle_mesh(radii, length, start, start + length * axis, segments, caps="flat")
+    # the frustum's times the k-gon's share of the circle, however far either k-gon is
+    # moved within its plane (Cavalieri's principle: the muscle clear of the bones).
+    offsets = moved_sideways(data, radii)
+    mesh = muscle_mesh(radii, length, start, start + length * axis, segments, caps="flat",
+                       offsets=offsets)
     expected = frusta_volume(radii, length) * polygon_factor(segments)
     assert as_trimesh(mesh).volume == pytest.approx(expected, rel=1e-9)
 
@@ -102,11 +123,13 @@ def test_round_capped_reference_muscle_holds_the_closed_volume_within_one_percen
 
 
 @slow
-@given(**placed)
+@given(**placed, data=st.data())
 def test_round_capped_volume_is_within_one_percent_at_the_default_segments(
-    radii, start, axis, length
+    radii, start, axis, length, data
 ):
-    mesh = muscle_mesh(radii, length, start, start + length * axis, DEFAULT_SEGMENTS)
+    offsets = moved_sideways(data, radii)
+    mesh = muscle_mesh(radii, length, start, start + length * axis, DEFAULT_SEGMENTS,
+                       offsets=offsets)
     caps = 2 / 3 * math.pi * (radii[0] ** 3 + radii[-1] ** 3)
     expected = frusta_volume(radii, length) + caps
     assert as_trimesh(mesh).volume == pytest.approx(expected, rel=0.01)
@@ -248,52 +271,47 @@ def test_sphere_normals_are_radial_and_volume_near_the_ball():
     assert as_trimesh(mesh).volume == pytest.approx(ball, rel=0.01)
 
 
-def bent_arm(origin_height=30.2):
-    """The arm26 skeleton bent to a right angle: the forearm along +x."""
-    return dict(
-        shoulder=np.array([0.0, 29.1, 0.0]),
-        origin=np.array([0.0, origin_height, 0.0]),
-        elbow=np.zeros(3),
-        insertion=np.array([5.4, 0.0, 0.0]),
-        hand=np.array([25.4, 0.0, 0.0]),
-    )
+def test_rings_moved_sideways_tilt_their_normals_by_the_move():
+    # A rod of radius 1 whose rings move 1 cm along +x for every 2 cm along the axis: on the
+    # side facing +x the surface leans back by atan(1/2), on the side facing +y not at all.
+    axis = np.array([0.0, 0.0, 1.0])
+    offsets = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
+    mesh = muscle_mesh([1.0, 1.0, 1.0], 4.0, [0, 0, 0], 4.0 * axis, 4, "flat", offsets=offsets)
+    middle = mesh.vertices[:, 2] == 2.0
+    towards_x = middle & np.isclose(mesh.vertices[:, 0], 2.0)
+    towards_y = middle & np.isclose(mesh.vertices[:, 1], 1.0)
+    np.testing.assert_allclose(mesh.normals[towards_x], [[2 / math.sqrt(5), 0, -1 / math.sqrt(5)]],
+                               atol=1e-12)
+    np.testing.assert_allclose(mesh.normals[towards_y], [[0.0, 1.0, 0.0]], atol=1e-12)
 
 
-def test_arm_muscle_runs_from_origin_to_insertion():
-    arm = bent_arm()
-    length = math.hypot(30.2, 5.4)
-    muscle = arm_meshes(**arm, radii=REFERENCE_RADII, muscle_length=length)["muscle"]
-    axis = (arm["insertion"] - arm["origin"]) / length
-    along, _ = axial_and_radial(muscle, arm["origin"], axis)
-    # The end rings sit on the attachments; only the caps reach beyond them.
-    assert np.sum(np.abs(along) < 1e-9) == DEFAULT_SEGMENTS
-    assert np.sum(np.abs(along - length) < 1e-9) == DEFAULT_SEGMENTS
-    assert along.min() == pytest.approx(-REFERENCE_RADII[0])
-    assert along.max() == pytest.approx(length + REFERENCE_RADII[-1])
+def test_offsets_along_the_axis_are_dropped():
+    axis = np.array([0.0, 0.0, 1.0])
+    along = np.array([[0.0, 0.0, 3.0], [0.0, 0.0, -2.0]])
+    moved = muscle_mesh([1.0, 2.0], 5.0, [0, 0, 0], 5.0 * axis, 8, offsets=along)
+    straight = muscle_mesh([1.0, 2.0], 5.0, [0, 0, 0], 5.0 * axis, 8)
+    np.testing.assert_allclose(moved.vertices, straight.vertices, atol=1e-12)
 
 
-def test_humerus_reaches_an_origin_beyond_the_shoulder():
-    meshes = arm_meshes(**bent_arm(30.2), radii=[1.0, 1.0], muscle_length=math.hypot(30.2, 5.4))
-    # A rod of radius 1 from the elbow to 30.2 cm up, with round ends.
-    assert meshes["humerus"].vertices[:, 1].max() == pytest.approx(30.2 + 1.0)
-    assert meshes["humerus"].vertices[:, 1].min() == pytest.approx(-1.0)
+@pytest.mark.parametrize("offsets", [np.zeros((4, 3)), np.zeros((3, 2)), np.full((3, 3), np.nan)])
+def test_offsets_that_do_not_fit_are_refused(offsets):
+    with pytest.raises(ValueError, match="offsets"):
+        muscle_mesh([1.0, 2.0, 1.0], 5.0, [0, 0, 0], [0, 0, 5], 8, offsets=offsets)
 
 
-def test_humerus_stops_at_the_shoulder_when_the_origin_is_below_it():
-    meshes = arm_meshes(**bent_arm(20.0), radii=[1.0, 1.0], muscle_length=math.hypot(20.0, 5.4))
-    assert meshes["humerus"].vertices[:, 1].max() == pytest.approx(29.1 + 1.0)
+def test_a_revolved_profile_is_closed_with_its_hand_checked_volume():
+    # A cylinder of radius 1, 2 long, as a profile with flat ends: a square (the 4-gon in
+    # the unit circle, area 2) times 2.
+    profile = [[0.0, 0.0], [0.0, 1.0], [2.0, 1.0], [2.0, 0.0]]
+    mesh = revolved_mesh(profile, [1.0, 2.0, 3.0], [0.0, 0.0, 5.0], segments=4)
+    closed = as_trimesh(mesh)
+    assert closed.is_watertight and closed.is_winding_consistent
+    assert closed.volume == pytest.approx(4.0, rel=1e-12)
 
 
-def test_forearm_reaches_the_hand_and_the_elbow_sphere_sits_on_the_elbow():
-    meshes = arm_meshes(**bent_arm(), radii=[1.0, 1.0], muscle_length=math.hypot(30.2, 5.4))
-    assert meshes["forearm"].vertices[:, 0].max() == pytest.approx(25.4 + 0.8)
-    np.testing.assert_allclose(np.linalg.norm(meshes["elbow"].vertices, axis=1), 1.4)
-
-
-def test_arm_parts_are_all_closed():
-    meshes = arm_meshes(**bent_arm(), radii=REFERENCE_RADII, muscle_length=math.hypot(30.2, 5.4))
-    assert set(meshes) == {"muscle", "humerus", "forearm", "elbow"}
-    assert all(as_trimesh(mesh).is_watertight for mesh in meshes.values())
+def test_a_revolved_profile_must_run_from_pole_to_pole():
+    with pytest.raises(ValueError, match="pole"):
+        revolved_mesh([[0.0, 1.0], [1.0, 1.0], [2.0, 0.0]], [0, 0, 0], [0, 1, 0])
 
 
 def triangle(offset):

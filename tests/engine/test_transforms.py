@@ -8,7 +8,7 @@ import pytest
 from biceps.engine.transforms import (
     Camera,
     frame_camera,
-    frame_sphere,
+    fit_points,
     look_at,
     model_matrix,
     normal_matrix,
@@ -112,16 +112,13 @@ def test_frame_camera_fits_the_box_and_fills_the_view(aspect):
 
 
 @pytest.mark.parametrize("aspect", [0.5, 1.0, 16 / 9])
-def test_frame_sphere_makes_the_sphere_touch_the_narrower_edges(aspect):
-    centre, radius, fov = np.array([3.0, -2.0, 1.0]), 10.0, 40.0
-    camera = frame_sphere(centre, radius, aspect, fov)
-    clip = camera.projection_matrix(aspect) @ camera.view_matrix()
-    half_y = np.radians(fov) / 2
-    half = min(half_y, np.arctan(np.tan(half_y) * aspect))
-    # The tangent point of a ray at the view's edge, on the narrower axis.
-    axis = 1 if half == half_y else 0
-    offset = np.zeros(3)
-    offset[axis], offset[2] = radius * np.cos(half), radius * np.sin(half)
-    ndc = transform_points(clip, (centre + offset)[None])[0]
-    assert ndc[axis] == pytest.approx(1.0, abs=1e-9)
-    assert abs(ndc[1 - axis]) < 1e-9
+def test_fit_points_keeps_every_point_in_view_centred_and_as_large_as_it_may(aspect):
+    rng = np.random.default_rng(3)
+    points = rng.normal(size=(200, 3)) * [4.0, 9.0, 3.0] + [2.0, -5.0, 1.0]
+    camera = fit_points(points, aspect, fov_y_deg=40.0, fill=0.9)
+    ndc = apply(camera.projection_matrix(aspect) @ camera.view_matrix(), *points)
+    assert np.all(np.abs(ndc[:, :2]) <= 0.9 + 1e-9)  # every point inside the margin
+    assert np.all((ndc[:, 2] > -1) & (ndc[:, 2] < 1))  # between the near and far planes
+    assert np.isclose(np.abs(ndc[:, :2]).max(), 0.9)  # and as large as that allows
+    middle = (points.min(axis=0) + points.max(axis=0)) / 2
+    np.testing.assert_allclose(camera.target[:2], middle[:2])  # aimed at their middle

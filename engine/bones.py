@@ -1,0 +1,217 @@
+"""The bones: the shoulder blade's glenoid, the humerus, the radius and the ulna, built from
+profiles revolved about axes (no copied meshes).
+
+Each bone is a few closed parts (the humerus: its shaft, head, tubercles and the spool of
+its condyles), each a profile of radii along an axis placed in the bone's frame (see
+``engine/skeleton.py``): the upper arm's parts stay put, the forearm's turn with the elbow.
+The parts of one bone overlap where they join, as a bone's processes grow out of it; the
+picture's depth test and the meshes' volumes do not mind.
+
+Proportions are an adult's, from the OpenSim arm26 model's geometry (its humerus 29.1 cm
+from the elbow's centre to the head's, its forearm 25.4 cm; its humeral head of radius about
+2.2 cm, after the wrapping ellipsoid BIClonghh), scaled with the skeleton's bone lengths.
+The knobs on which the muscle's tendons end (the supraglenoid tubercle, the radial
+tuberosity) are built to reach the skeleton's attachments wherever they are, so a tendon
+always ends on bone.
+
+A part also gives its profile as spheres (centres and radii, world space), the cheap shape
+with which the muscle keeps clear of it (``engine/clearance.py``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from biceps.engine.mesh import Mesh, revolved_mesh
+from biceps.engine.skeleton import ArmPose, Skeleton
+
+ARM26_UPPER_ARM = 29.1
+ARM26_FOREARM = 25.4
+HEAD_RADIUS = 2.2  # arm26's BIClonghh wrapping ellipsoid: 2.5 by 2 by 2 cm
+STEP = 0.6  # cm between the profile's samples along a part's axis
+
+
+@dataclass(frozen=True, eq=False)
+class Part:
+    """One closed piece of a bone: a profile (k, 2) of rows (distance along the axis,
+    radius), pole to pole, revolved about the line from ``start`` (3,) along the unit
+    ``axis`` (3,), in its bone's frame."""
+
+    start: np.ndarray
+    axis: np.ndarray
+    profile: np.ndarray
+
+    def mesh(self, segments: int) -> Mesh:
+        return revolved_mesh(self.profile, self.start, self.axis, segments)
+
+    def spheres(self) -> tuple[np.ndarray, np.ndarray]:
+        """Centres (k, 3) and radii (k,) of spheres along the axis, one per profile point."""
+        x, r = self.profile[1:-1].T
+        return self.start + np.outer(x, self.axis), r
+
+
+def profile(knots, ends: tuple[float, float], step: float = STEP) -> np.ndarray:
+    """A smooth profile (k, 2), pole to pole, through ``knots`` (j, 2) rows (distance along
+    the axis, radius), j >= 2, increasing distances.
+
+    Between knots the radius follows a Catmull-Rom spline, sampled every ``step`` cm or
+    closer; each end closes with a quarter ellipse as long as that end's entry of ``ends``
+    (the end's radius: a hemisphere; less: a flatter end).
+    """
+    knots = np.asarray(knots, dtype=np.float64)
+    x, r = knots.T
+    slopes = np.gradient(r, x)  # Catmull-Rom's tangents, for knots unevenly spaced
+    samples = [knots[:1]]
+    for i in range(len(knots) - 1):
+        count = max(1, int(np.ceil((x[i + 1] - x[i]) / step)))
+        t = np.linspace(0.0, 1.0, count + 1)[1:]
+        h = x[i + 1] - x[i]
+        radius = ((2 * t**3 - 3 * t**2 + 1) * r[i] + (t**3 - 2 * t**2 + t) * h * slopes[i]
+                  + (-2 * t**3 + 3 * t**2) * r[i + 1] + (t**3 - t**2) * h * slopes[i + 1])
+        samples.append(np.column_stack([x[i] + t * h, radius]))
+    body = np.concatenate(samples)
+    arcs = np.linspace(0.0, np.pi / 2, 5)[:-1]  # elevations from the pole, the ring excluded
+    before = np.column_stack([x[0] - ends[0] * np.cos(arcs), r[0] * np.sin(arcs)])
+    after = np.column_stack([x[-1] + ends[1] * np.cos(arcs), r[-1] * np.sin(arcs)])[::-1]
+    return np.concatenate([before, body, after])
+
+
+def _rod(start, end, radius: float) -> Part:
+    """A rod of ``radius`` from ``start`` to ``end`` (3,), rounded at both ends."""
+    start, end = np.asarray(start, dtype=np.float64), np.asarray(end, dtype=np.float64)
+    length = float(np.linalg.norm(end - start))
+    axis = (end - start) / length if length > 0 else np.array([0.0, 1.0, 0.0])
+    return Part(start, axis, profile([[0.0, radius], [length, radius]], (radius, radius)))
+
+
+def _knob(base, tip, radius: float) -> Part:
+    """A rounded knob of ``radius`` growing from ``base`` towards ``tip`` (3,) and ending
+    exactly there: a tubercle under a tendon's end."""
+    base, tip = np.asarray(base, dtype=np.float64), np.asarray(tip, dtype=np.float64)
+    reach = float(np.linalg.norm(tip - base))
+    direction = (tip - base) / reach if reach > 0 else np.array([0.0, 1.0, 0.0])
+    return _rod(base, tip - direction * radius if reach > radius else base, radius)
+
+
+def _along(start, end, knots, ends) -> Part:
+    """A part whose profile runs from ``start`` towards ``end`` (3,); ``knots`` as in
+    `profile`, distances as fractions of the way from start to end."""
+    start, end = np.asarray(start, dtype=np.float64), np.asarray(end, dtype=np.float64)
+    length = float(np.linalg.norm(end - start))
+    knots = np.asarray(knots, dtype=np.float64) * [length, 1.0]
+    return Part(start, (end - start) / length, profile(knots, ends))
+
+
+@lru_cache(maxsize=16)
+def bone_parts(skeleton: Skeleton) -> dict[str, tuple[bool, tuple[Part, ...]]]:
+    """Each bone's parts, by name ("scapula", "humerus", "radius", "ulna"), in its frame, and
+    whether it turns with the forearm. Cached: the bones change only with the skeleton."""
+    up = skeleton.upper_arm / ARM26_UPPER_ARM  # the upper arm's scale
+    fore = skeleton.forearm / ARM26_FOREARM
+    top = skeleton.upper_arm
+    head = HEAD_RADIUS * up
+
+    humerus = (
+        # The shaft, from inside the condyles to inside the head: flared above the elbow,
+        # slender in the middle, widening to the surgical neck.
+        Part(np.zeros(3), np.array([0.0, 1.0, 0.0]), profile(
+            np.array([[0.6, 1.35], [1.6, 1.4], [3.0, 1.22], [5.5, 1.0], [9.0, 0.9],
+                      [15.0, 0.86], [21.0, 0.95], [24.5, 1.2], [26.5, 1.55], [27.6, 1.8]]) * up,
+            (1.0 * up, 1.0 * up))),
+        Part(np.array([0.0, top, 0.0]), np.array([0.0, 1.0, 0.0]), _sphere_profile(head)),
+        # The greater tubercle, a bulge on the outside of the neck, and the lesser, in front;
+        # the biceps' tendon runs in the groove between them.
+        _rod(np.array([0.5, top - 0.9 * up, 1.0 * up]), np.array([0.6, top - 2.0 * up, 0.9 * up]),
+             1.25 * up),
+        _rod(np.array([1.0, top - 1.1 * up, -0.5 * up]), np.array([0.9, top - 1.8 * up, -0.5 * up]),
+             0.75 * up),
+        # The condyles, a spool about the elbow's axis: the trochlea inside, under the ulna,
+        # the capitulum outside, under the radius, the epicondyles at either end.
+        Part(np.array([0.0, 0.0, -3.2 * up]), np.array([0.0, 0.0, 1.0]), profile(
+            np.array([[0.0, 0.55], [0.5, 0.8], [1.1, 1.12], [2.0, 0.95], [2.8, 1.12],
+                      [3.2, 0.98], [3.6, 1.05], [4.5, 1.05], [5.1, 0.8], [5.6, 0.55]]) * up,
+            (0.4 * up, 0.4 * up))),
+    )
+    glenoid = np.array([0.0, top, -(head + 0.1 * up)])
+    scapula = (
+        # The glenoid's face against the head, the neck, and the start of the blade.
+        _along(glenoid, glenoid + [0.0, 0.0, -3.5 * up],
+               [[0.0, 1.2 * up], [0.12, 1.3 * up], [0.45, 0.95 * up], [1.0, 1.35 * up]],
+               (0.15 * up, 0.9 * up)),
+        _knob(glenoid + [0.0, 0.8 * up, -0.4 * up], skeleton.origin.in_frame(), 0.45 * up),
+    )
+
+    insertion = skeleton.insertion.in_frame()
+    # Forearm frame as the straight arm holds it: along is -y, forward +x, lateral +z.
+    radius_top = np.array([0.0, -1.15 * up, 1.45 * fore])
+    radius_end = np.array([0.2 * fore, -skeleton.forearm, 2.0 * fore])
+    shaft = radius_end - radius_top
+    level = (radius_top[1] - insertion[1]) / -shaft[1]  # how far down the radius it sits
+    radius = (
+        _along(radius_top, radius_end,
+               [[0.0, 1.05 * fore], [0.04, 1.05 * fore], [0.07, 0.7 * fore], [0.15, 0.62 * fore],
+                [0.45, 0.68 * fore], [0.75, 0.82 * fore], [0.92, 1.05 * fore],
+                [1.0, 1.35 * fore]], (0.2 * fore, 0.4 * fore)),
+        _knob(radius_top + np.clip(level, 0.0, 1.0) * shaft, insertion, 0.5 * fore),
+    )
+    ulna = (
+        # From the olecranon's tip, behind and above the elbow, to the ulna's head at the
+        # wrist; the trochlear notch wraps the trochlea.
+        _along([-1.55 * up, 2.3 * up, -1.0 * up], [-0.3 * fore, -skeleton.forearm, -1.3 * fore],
+               [[0.0, 0.95 * up], [0.06, 1.3 * up], [0.13, 1.2 * up], [0.2, 1.0 * fore],
+                [0.35, 0.78 * fore], [0.7, 0.6 * fore], [0.95, 0.55 * fore],
+                [1.0, 0.75 * fore]], (0.8 * up, 0.6 * fore)),
+    )
+    return {"scapula": (False, scapula), "humerus": (False, humerus),
+            "radius": (True, radius), "ulna": (True, ulna)}
+
+
+def _sphere_profile(radius: float, bands: int = 16) -> np.ndarray:
+    """A sphere's profile (bands + 1, 2) about its centre, pole to pole."""
+    elevations = np.linspace(-np.pi / 2, np.pi / 2, bands + 1)
+    rows = np.column_stack([radius * np.sin(elevations), radius * np.cos(elevations)])
+    rows[[0, -1], 1] = 0.0
+    return rows
+
+
+@lru_cache(maxsize=16)
+def _bone_meshes(skeleton: Skeleton, segments: int) -> dict[str, tuple[bool, Mesh]]:
+    return {name: (turns, Mesh.concatenate(part.mesh(segments) for part in parts))
+            for name, (turns, parts) in bone_parts(skeleton).items()}
+
+
+def bone_meshes(skeleton: Skeleton, pose: ArmPose, segments: int) -> dict[str, Mesh]:
+    """Each bone as one mesh (of closed parts) in world space, in ``pose``."""
+    return {name: _posed(mesh, pose) if turns else mesh
+            for name, (turns, mesh) in _bone_meshes(skeleton, segments).items()}
+
+
+def bone_spheres(skeleton: Skeleton, pose: ArmPose) -> tuple[np.ndarray, np.ndarray]:
+    """Every bone part's spheres in world space, in ``pose``: centres (k, 3), radii (k,)."""
+    centres, radii = [], []
+    for turns, parts in bone_parts(skeleton).values():
+        for part in parts:
+            centre, radius = part.spheres()
+            centres.append(_turned(centre, pose) if turns else centre)
+            radii.append(radius)
+    return np.concatenate(centres), np.concatenate(radii)
+
+
+def _turned(points: np.ndarray, pose: ArmPose) -> np.ndarray:
+    """Points (k, 3) of the straight forearm, turned with the elbow into ``pose``."""
+    return points @ _straight_to(pose).T
+
+
+def _straight_to(pose: ArmPose) -> np.ndarray:
+    """(3, 3): the rotation about the elbow's axis from the straight arm to ``pose``. The
+    forearm frame at 0 degrees has columns (0, -1, 0), (1, 0, 0), (0, 0, 1)."""
+    straight = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    return pose.forearm_frame @ straight.T
+
+
+def _posed(mesh: Mesh, pose: ArmPose) -> Mesh:
+    rotation = _straight_to(pose)
+    return Mesh(mesh.vertices @ rotation.T, mesh.normals @ rotation.T, mesh.triangles)

@@ -1,0 +1,89 @@
+"""The muscle clear of the bones: its cross-sections moved sideways, each within its plane.
+
+The muscle's line runs straight from origin to insertion (its length is that line's, which
+the elbow follows by the law of cosines), and on that line it would pass through the humeral
+head, the humerus and the elbow. So each circular section is moved forward, to the flexor
+side where the biceps lies (within the section's plane, away from the elbow's axis), just
+far enough that its disc clears every bone: the muscle bulges to one side, over the bones,
+as a real biceps lies on them. Moving sections within their planes leaves the volume as it
+was (Cavalieri's principle; ``engine/mesh.py`` says why the mesh's does not change either),
+so the volume law needs no change.
+
+A bone is a row of spheres along its axis (``engine/bones.py``). A sphere cuts a section's
+plane in a circle, and the section's disc, moved by ``s`` along the forward direction, must
+keep its radius plus that circle's plus a small gap from the circle's centre: a quadratic
+in ``s`` that rules out one interval. Each section takes the least ``s >= 0`` outside every
+such interval, and the moves are then smoothed from above (no section moves less than it
+needs) so the muscle leans no steeper than ``SLOPE``. The tendons' last centimetre at either
+end, which is where they hold on to their bone, is left where it is.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+RINGS_PER_SEGMENT = 4
+"""Sections drawn per segment between two nodes, so the moves bend smoothly."""
+
+GAP = 0.1  # cm kept between muscle and bone
+SLOPE = 0.7  # the most a section moves per cm along the muscle
+HOLD = 1.0  # cm at either end where the tendon holds on to its bone and does not move
+_ROUNDS = 24  # passes over the intervals; each lifts a section past one more bone
+
+
+def forward(start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """(3,) the unit direction, perpendicular to the muscle's line and to the elbow's axis
+    (``z``), on the side away from the elbow (the origin of world space): the flexor side."""
+    axis = (end - start) / np.linalg.norm(end - start)
+    side = np.array([-axis[1], axis[0], 0.0])  # z x axis
+    side /= np.linalg.norm(side)
+    nearest = start - (start @ axis) * axis  # the line's point nearest the elbow
+    return side if nearest @ side >= 0.0 else -side
+
+
+def section_offsets(start, end, radii, centres, sphere_radii,
+                    per_segment: int = RINGS_PER_SEGMENT) -> np.ndarray:
+    """The sideways moves (m, 3) of the muscle's m = (n - 1) per_segment + 1 sections,
+    equally spaced from ``start`` to ``end`` ((3,) each), that keep it clear of the bones.
+
+    radii: (n,) the node radii. centres: (k, 3) and sphere_radii: (k,): the bones' spheres.
+    """
+    start, end = np.asarray(start, dtype=np.float64), np.asarray(end, dtype=np.float64)
+    length = float(np.linalg.norm(end - start))
+    axis = (end - start) / length
+    side = forward(start, end)
+    count = (len(radii) - 1) * per_segment + 1
+    along = np.linspace(0.0, length, count)
+    radius = np.interp(along, np.linspace(0.0, length, len(radii)), radii)
+    shift = _least_shifts(start + np.outer(along, axis), radius, axis, side, centres,
+                          sphere_radii)
+    shift[(along < HOLD) | (along > length - HOLD)] = 0.0
+    # The least smooth profile above the needs: each need spreads down both ways at SLOPE.
+    smooth = np.max(shift[None, :] - SLOPE * np.abs(along[:, None] - along[None, :]), axis=1)
+    smooth[[0, -1]] = 0.0  # the attachments themselves stay on the bone
+    return np.outer(smooth, side)
+
+
+def _least_shifts(points, radius, axis, side, centres, sphere_radii) -> np.ndarray:
+    """For each section (points (m, 3), radius (m,)), the least move s >= 0 along ``side``
+    that clears every sphere's circle in the section's plane: (m,)."""
+    offsets = centres[None, :, :] - points[:, None, :]  # (m, k, 3)
+    height = offsets @ axis  # each sphere's centre above the section's plane
+    cut = np.sqrt(np.maximum(sphere_radii[None, :] ** 2 - height**2, 0.0))
+    cuts = np.abs(height) < sphere_radii[None, :]
+    in_plane = offsets - height[..., None] * axis
+    ahead = in_plane @ side
+    reach = radius[:, None] + cut + GAP
+    spread = ahead**2 - np.einsum("mkc,mkc->mk", in_plane, in_plane) + reach**2
+    blocked = cuts & (spread > 0.0)
+    root = np.sqrt(np.where(blocked, spread, 0.0))
+    low = np.where(blocked, ahead - root, np.inf)
+    high = np.where(blocked, ahead + root, -np.inf)
+    shift = np.zeros(len(points))
+    for _ in range(_ROUNDS):
+        inside = (low < shift[:, None]) & (shift[:, None] < high)
+        lifted = np.max(np.where(inside, high, shift[:, None]), axis=1)
+        if np.array_equal(lifted, shift):
+            break
+        shift = lifted
+    return shift
