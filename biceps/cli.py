@@ -192,7 +192,8 @@ def info(config: Path, length: float | None, flexion: float | None, as_json: boo
     click.echo(
         f"{config}\n"
         f"  length         {facts['length_cm']:.3f} cm (allowed {low:.2f} to {high:.2f})\n"
-        f"  elbow flexion  {facts['flexion_deg']:.2f} degrees\n"
+        f"  elbow flexion  {facts['flexion_deg']:.2f} degrees, "
+        f"moment arm {facts['moment_arm_cm']:.3f} cm\n"
         f"  volume         {facts['volume_cm3']:.6f} cm^3 ({facts['volume_mode']}), "
         f"relative error {facts['volume_relative_error']:.1e}\n"
         f"  max radius     {facts['max_radius_cm']:.3f} cm, girth {facts['girth_cm']:.3f} cm\n"
@@ -250,6 +251,7 @@ def describe(arm: Arm) -> dict[str, Any]:
         "length_cm": muscle.length,
         "length_range_cm": list(arm.length_range()),
         "flexion_deg": arm.flexion,
+        "moment_arm_cm": arm.moment_arm,
         "volume_mode": muscle.volume_mode,
         "volume_cm3": muscle.volume,
         "reference_volume_cm3": muscle.reference_volume,

@@ -76,9 +76,28 @@ def _unit_rgb(colour: str) -> np.ndarray:
     return np.array(rgb(colour), dtype=np.float32) / 255.0
 
 
+def outline(vertices: np.ndarray, directions: int = 256) -> np.ndarray:
+    """The vertices (k, 3), k <= ``directions``, farthest out along directions spread evenly
+    over the sphere (a Fibonacci lattice): all that framing needs of ``vertices`` (n, 3).
+
+    Neighbouring directions are at most about 13 degrees apart, so no vertex stands out of
+    the outline's hull by more than 1 - cos(6.5 degrees), 0.7 %, of the arm's reach: far
+    inside the margin `FILL` leaves. Framing a few hundred points instead of every vertex
+    takes a fraction of a millisecond instead of several.
+    """
+    index = np.arange(directions) + 0.5
+    height = 1.0 - 2.0 * index / directions
+    turn = np.pi * (1.0 + 5.0**0.5) * index
+    ring = np.sqrt(1.0 - height**2)
+    lattice = np.column_stack([ring * np.cos(turn), height, ring * np.sin(turn)])
+    centre = (vertices.min(axis=0) + vertices.max(axis=0)) / 2.0
+    return vertices[np.unique(np.argmax(lattice @ (vertices - centre).T, axis=1))]
+
+
 def view_camera(view: View, vertices: np.ndarray, aspect: float) -> tuple[Camera, np.ndarray]:
     """The camera framing ``vertices`` (n, 3), world space at rest, turned by ``view``, at
-    this width / height; and the model matrix (4, 4) that turns, moves and scales them."""
+    this width / height; and the model matrix (4, 4) that turns, moves and scales them.
+    (Pass the `outline` of a mesh's vertices: it frames them as well, and faster.)"""
     pivot = (vertices.min(axis=0) + vertices.max(axis=0)) / 2.0
     turn = model_matrix(np.radians(view.yaw), np.radians(view.pitch), np.radians(view.roll),
                         pivot=pivot)
@@ -100,11 +119,12 @@ class SceneRenderer:
         self._renderer = Renderer()
         self._mesh_key: tuple | None = None
         self._mesh: tuple[Mesh, np.ndarray] | None = None
+        self._outline: np.ndarray | None = None
 
     def render(self, scene: Scene, width: int, height: int) -> np.ndarray:
         """The picture of ``scene``: (height, width, 3) uint8, valid until the next call."""
         mesh, albedo = self._mesh_of(scene)
-        camera, model = view_camera(scene.view, mesh.vertices, width / height)
+        camera, model = view_camera(scene.view, self._outline, width / height)
         return self._renderer.render(
             mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
             scene.light, width, height, shading=scene.render.shading,
@@ -121,5 +141,6 @@ class SceneRenderer:
                render.bone_colour)
         if key != self._mesh_key:
             self._mesh = scene_mesh(scene.arm, render)
+            self._outline = outline(self._mesh[0].vertices)
             self._mesh_key = key
         return self._mesh

@@ -217,29 +217,35 @@ def frame_camera(bounds_min, bounds_max, aspect: float, fov_y_deg: float = 35.0,
 def fit_points(points, aspect: float, fov_y_deg: float = 35.0, fill: float = 0.9,
                scale: float = 1.0) -> Camera:
     """The tightest centred framing of ``points`` (n, 3) (world space): a camera on their
-    ``+z`` side looking down ``-z`` at the middle of their ``x`` and ``y`` extents, as close
-    as it can be with every point within ``fill`` of the view's half-width and half-height.
+    ``+z`` side looking down ``-z``, as close as it can be with every point within ``fill``
+    of the view's half-width and half-height, aimed so that their picture is centred.
 
     aspect: width / height of the view. ``scale`` (the model's zoom about the target) only
     pushes the far plane out so a scaled-up model is not cut off.
 
-    From an eye at height ``e`` above the target, a point ``(x, y, z)`` is in view when
-    ``|x - cx| <= (e - z) tan_x`` and ``|y - cy| <= (e - z) tan_y``: the least ``e`` is the
-    largest of ``z + |x - cx| / tan_x`` and ``z + |y - cy| / tan_y`` over the points, exact
-    in perspective.
+    From an eye at ``(cx, cy, e)``, a point ``(x, y, z)`` is in view when
+    ``|x - cx| <= (e - z) tan_x`` and ``|y - cy| <= (e - z) tan_y``: for a given aim the
+    least ``e`` is the largest of ``z + |x - cx| / tan_x`` and ``z + |y - cy| / tan_y`` over
+    the points, exact in perspective. Aimed first at the middle of the points' extents, the
+    picture of a deep model is off centre (its near end looks larger), so the aim then moves
+    by the picture's own offset, a few times over.
     """
     points = np.asarray(points, dtype=np.float64)
     low, high = points.min(axis=0), points.max(axis=0)
-    centre = (low + high) / 2.0
+    aim = (low + high) / 2.0
     tan_y = math.tan(math.radians(fov_y_deg) / 2.0) * fill
-    tan_x = tan_y * aspect
-    off = np.abs(points[:, :2] - centre[:2])
-    eye_z = float(np.max(np.maximum(points[:, 2] + off[:, 0] / tan_x,
-                                    points[:, 2] + off[:, 1] / tan_y)))
-    distance = eye_z - centre[2]
+    tans = np.array([tan_y * aspect, tan_y])
+    for _ in range(4):
+        off = points[:, :2] - aim[:2]
+        eye_z = float(np.max(points[:, 2] + np.max(np.abs(off) / tans, axis=1)))
+        seen = off / (eye_z - points[:, 2:3])  # each point's place in the picture, in tan
+        aim[:2] += (seen.min(axis=0) + seen.max(axis=0)) / 2.0 * (eye_z - aim[2])
+    off = points[:, :2] - aim[:2]
+    eye_z = float(np.max(points[:, 2] + np.max(np.abs(off) / tans, axis=1)))
+    distance = eye_z - aim[2]
     reach = float(np.linalg.norm(high - low)) / 2.0
     return Camera(
-        eye=(float(centre[0]), float(centre[1]), eye_z),
-        target=tuple(float(c) for c in centre), fov_y_deg=fov_y_deg,
+        eye=(float(aim[0]), float(aim[1]), eye_z),
+        target=tuple(float(c) for c in aim), fov_y_deg=fov_y_deg,
         near=0.05 * distance, far=distance + 8.0 * reach * max(scale, 1.0),
     )

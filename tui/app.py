@@ -40,6 +40,7 @@ from biceps.tui.changes import (
     MOVE_STEP,
     TURN_STEP,
     differs_from_saved,
+    fitted,
     length_changed,
     light_moved,
     moved,
@@ -92,6 +93,7 @@ class BicepsApp(App[None]):
         Binding("shift+down,s", f"move(0, {-MOVE_STEP})", "Move down", show=False),
         Binding("plus,equals_sign", "zoom(1)", "Scale up", show=False),
         Binding("minus", "zoom(-1)", "Scale down", show=False),
+        Binding("f", "fit", "Fit the arm to the view", show=False),
         Binding("c", f"change_length({-FINE_STEP})", "Contract"),
         Binding("C", f"change_length({-COARSE_STEP})", f"Contract {COARSE_STEP:g} cm", show=False),
         Binding("x", f"change_length({FINE_STEP})", "Stretch"),
@@ -217,6 +219,9 @@ class BicepsApp(App[None]):
 
     def action_zoom(self, steps: float) -> None:
         self._change(partial(zoomed, steps=steps))
+
+    def action_fit(self) -> None:
+        self._change(fitted)
 
     def action_change_length(self, change: float) -> None:
         try:

@@ -59,6 +59,12 @@ def zoomed(scene: Scene, steps: float) -> Scene:
     return scene.with_view(scale=wanted)
 
 
+def fitted(scene: Scene) -> Scene:
+    """The view at scale 1 and unmoved, however it is turned: the camera then fits the arm,
+    as posed, to the picture (``engine/scene.py``)."""
+    return scene.with_view(scale=1.0, offset=(0.0, 0.0, 0.0))
+
+
 def light_moved(scene: Scene, x: float = 0.0, y: float = 0.0, z: float = 0.0) -> Scene:
     """The light moved by (x, y, z) cm in world space."""
     lx, ly, lz = scene.light.position

@@ -26,6 +26,12 @@ def test_info_json_reports_the_pose_and_the_volume():
     assert facts["volume_relative_error"] < 1e-12
     assert facts["nodes"] == len(facts["radii_cm"]) == 15
     assert facts["girth_cm"] == pytest.approx(2 * np.pi * max(facts["radii_cm"]))
+    assert facts["moment_arm_cm"] == pytest.approx(4.989, abs=0.001)  # arm26: 4.875
+
+
+def test_info_shows_the_moment_arm():
+    result = run("info", DEFAULT_CONFIG, "--flexion", "0")
+    assert "elbow flexion  0.00 degrees, moment arm 0.641 cm" in result.stdout
 
 
 def test_info_refuses_an_unreachable_length():

@@ -1,4 +1,5 @@
-"""The numbers that matter as the muscle changes: length, elbow, volume, thickness."""
+"""The numbers that matter as the muscle changes: length, elbow and lever, volume,
+thickness."""
 
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ class Stats(Static):
         table.add_row("length", f"{muscle.length:.2f} cm")
         table.add_row("  range", f"{shortest:.2f} to {longest:.2f}")
         table.add_row("flexion", f"{arm.flexion:.1f}°")
+        table.add_row("moment arm", f"{arm.moment_arm:.2f} cm")
         table.add_row("volume", f"{muscle.volume:.3f} cm³")
         table.add_row("  error", f"{muscle.volume_error:.1e} ({muscle.volume_mode})")
         table.add_row("max radius", f"{muscle.max_radius:.3f} cm")
