@@ -7,30 +7,9 @@ import numpy as np
 import pytest
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config, rgb
+from framing import arm_mask, assert_fills_the_view
 from biceps.engine.scene import Scene, SceneRenderer, scene_mesh, view_camera
 from biceps.engine.transforms import transform_points
-
-
-def arm_mask(picture: np.ndarray, scene: Scene) -> np.ndarray:
-    """(h, w) bool: the pixels that are not background."""
-    return np.any(picture != rgb(scene.render.background), axis=2)
-
-
-def box(mask: np.ndarray) -> tuple[int, int, int, int]:
-    """The first and last row and column of ``mask``'s true pixels."""
-    rows, columns = np.flatnonzero(mask.any(axis=1)), np.flatnonzero(mask.any(axis=0))
-    return rows[0], rows[-1], columns[0], columns[-1]
-
-
-def assert_fills_the_view(mask: np.ndarray) -> None:
-    """The issue's framing: the arm's box spans at least 70 % of the width or the height,
-    its centre lies within 10 % of the picture's, and nothing touches the edges."""
-    height, width = mask.shape
-    top, bottom, left, right = box(mask)
-    assert max((bottom - top + 1) / height, (right - left + 1) / width) >= 0.7
-    assert abs((top + bottom + 1) / 2 - height / 2) <= 0.1 * height
-    assert abs((left + right + 1) / 2 - width / 2) <= 0.1 * width
-    assert not (mask[0].any() or mask[-1].any() or mask[:, 0].any() or mask[:, -1].any())
 
 
 @pytest.fixture(scope="module")
@@ -41,14 +20,15 @@ def default_scene() -> Scene:
 @pytest.mark.parametrize("flexion", [0.0, 60.0, 130.0])
 def test_a_default_snapshot_fills_the_view_in_every_pose(default_scene, flexion):
     scene = default_scene.with_arm(default_scene.arm.at_flexion(flexion))
-    assert_fills_the_view(arm_mask(SceneRenderer().render(scene, 1920, 1080), scene))
+    background = rgb(scene.render.background)
+    assert_fills_the_view(arm_mask(SceneRenderer().render(scene, 1920, 1080), background))
 
 
 @pytest.mark.parametrize("yaw, pitch", [(-90.0, 0.0), (90.0, 0.0), (180.0, 20.0), (0.0, 80.0)])
 def test_from_any_side_the_arm_is_whole_and_centred(default_scene, yaw, pitch):
     scene = default_scene.with_arm(default_scene.arm.at_flexion(60.0)).with_view(yaw=yaw,
                                                                                   pitch=pitch)
-    mask = arm_mask(SceneRenderer().render(scene, 640, 360), scene)
+    mask = arm_mask(SceneRenderer().render(scene, 640, 360), rgb(scene.render.background))
     assert_fills_the_view(mask)
 
 

@@ -54,7 +54,7 @@ async def test_a_key_changes_the_scene(biceps, key):
 
 def test_every_key_of_the_main_screen_is_tested():
     tested = set(KEY_EFFECTS) | {
-        "r", "ctrl+s", "ctrl+d", "ctrl+o", "e", "f1", "question_mark", "q", "ctrl+q",
+        "r", "f", "ctrl+s", "ctrl+d", "ctrl+o", "e", "f1", "question_mark", "q", "ctrl+q",
     }  # fmt: skip
     tested |= {"p", "v"}  # test_app_plots.py, test_app_record.py
     bound = {key for binding in BicepsApp.BINDINGS for key in binding.key.split(",")}
