@@ -5,7 +5,8 @@ arm's extent, from as close as keeps every vertex within ``FILL`` of the picture
 (`transforms.fit_points`), so the arm is as large as the picture allows, centred, in every
 pose. The view turns the model about the centre of its bounding box, moves it by its offset,
 then scales it about the point the camera looks at: zooming grows the picture about its
-own centre, wherever the model was moved, and never pushes the middle of the arm out.
+own centre, wherever the model was moved, and never pushes the middle of the arm out. The
+light, which stays put as the model turns, scales with it, so zooming does not relight it.
 """
 
 from __future__ import annotations
@@ -108,6 +109,15 @@ def view_camera(view: View, vertices: np.ndarray, aspect: float) -> tuple[Camera
     return camera, model
 
 
+def zoomed_light(light: Light, scale: float, camera: Camera) -> Light:
+    """``light`` scaled with the model about the point the camera looks at, so that zooming
+    magnifies the picture without relighting it (a light left where it was would end up
+    inside a model zoomed eight times)."""
+    target = np.array(camera.target)
+    position = target + scale * (np.array(light.position) - target)
+    return replace(light, position=tuple(position.tolist()))
+
+
 class SceneRenderer:
     """Turns scenes into pictures, reusing its buffers and the last mesh between frames.
 
@@ -125,9 +135,10 @@ class SceneRenderer:
         """The picture of ``scene``: (height, width, 3) uint8, valid until the next call."""
         mesh, albedo = self._mesh_of(scene)
         camera, model = view_camera(scene.view, self._outline, width / height)
+        light = zoomed_light(scene.light, scene.view.scale, camera)
         return self._renderer.render(
             mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
-            scene.light, width, height, shading=scene.render.shading,
+            light, width, height, shading=scene.render.shading,
             ssaa=scene.render.ssaa, background=rgb(scene.render.background),
         )  # fmt: skip
 
