@@ -75,8 +75,9 @@ def main() -> None:
         their_change = reference["length_mm"][i] - reference["length_mm"][0]
         our_change = lengths[i] - lengths[0]
         their_arm, our_arm = reference["moment_arm_mm"][i], moment_arms[i]
-        print(f"{flexion:>8}{their_change:>10.2f}{our_change:>10.2f}{our_change - their_change:>7.2f}"
-              f"{their_arm:>10.2f}{our_arm:>10.2f}{our_arm - their_arm:>7.2f}")
+        print(f"{flexion:>8}{their_change:>10.2f}{our_change:>10.2f}"
+              f"{our_change - their_change:>7.2f}{their_arm:>10.2f}{our_arm:>10.2f}"
+              f"{our_arm - their_arm:>7.2f}")
 
 
 if __name__ == "__main__":

@@ -26,7 +26,8 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
-from biceps.engine.mesh import Mesh, cylinder_mesh, muscle_mesh, sphere_mesh  # noqa: E402
+from biceps.engine.mesh import (Mesh, cylinder_mesh, muscle_mesh,  # noqa: E402
+                               sphere_mesh)
 from biceps.engine.render import Renderer, clear  # noqa: E402
 from biceps.engine.transforms import Light, frame_camera, model_matrix, transform_points  # noqa: E402
 

@@ -29,7 +29,7 @@ class Renderer:
 
     def __init__(self):
         self._frame: tuple | None = None  # (height, width, ssaa)
-        self._planes = np.empty((10, 3))  # the rasterizers' scratch: depth and 9 attributes
+        self._planes = np.empty((11, 3))  # the rasterizers' scratch: depth, 1 / w, 9 attributes
         self._vertex_count = -1
 
     def render(self, vertices, normals, triangles, albedo, model_matrix, camera: Camera,
@@ -116,7 +116,7 @@ class Renderer:
         raster.transform_vertices(self._vertices, self._normals, model, _normal_matrix(model),
                                   self._world, self._world_normals)
         raster.project_vertices(self._world, view_projection, width, height, self._clip,
-                                self._screen_xy, self._screen_z, self._outcodes)
+                                self._screen_xy, self._screen_z, self._screen_q, self._outcodes)
 
     def _vertex_attributes(self, shading: str, light: Light) -> np.ndarray:
         """Work out what the rasterizer interpolates for ``shading``: (a, n) float64."""
@@ -136,8 +136,8 @@ class Renderer:
 
     def _rasterize(self, rasterize, triangles, attributes, lighting) -> None:
         """Draw ``triangles`` of the projected vertices into the frame buffers."""
-        rasterize(triangles, self._screen_xy, self._screen_z, self._outcodes, attributes,
-                  lighting, self._colour.reshape(-1), self._depth.reshape(-1),
+        rasterize(triangles, self._screen_xy, self._screen_z, self._screen_q, self._outcodes,
+                  attributes, lighting, self._colour.reshape(-1), self._depth.reshape(-1),
                   self._depth.shape[1], self._spans, self._planes)
 
     def _downsample(self) -> None:
@@ -154,17 +154,17 @@ class Renderer:
         crossing = np.count_nonzero(outside[triangles].any(axis=1))
         room = max(crossing, 1) * raster.MAX_POLYGON
         out_xy = np.empty((2, room), np.int64)
-        out_z = np.empty(room)
+        out_z, out_q = np.empty(room), np.empty(room)
         out_attributes = np.empty((attributes.shape[0], room))
         out_triangles = np.empty((room, 3), np.int32)
         counts = np.zeros(2, np.int64)
         raster.clip_triangles(triangles, self._clip, self._screen_xy, self._screen_z,
-                              self._outcodes, attributes, width, height, out_xy, out_z,
-                              out_attributes, out_triangles, counts)
+                              self._screen_q, self._outcodes, attributes, width, height, out_xy,
+                              out_z, out_q, out_attributes, out_triangles, counts)
         inside = np.zeros(room, np.uint8)  # every outcode 0: the clipper did its work
-        rasterize(_read_only(out_triangles[:counts[1]]), out_xy, out_z, inside, out_attributes,
-                  lighting, self._colour.reshape(-1), self._depth.reshape(-1), width, self._spans,
-                  self._planes)
+        rasterize(_read_only(out_triangles[:counts[1]]), out_xy, out_z, out_q, inside,
+                  out_attributes, lighting, self._colour.reshape(-1), self._depth.reshape(-1),
+                  width, self._spans, self._planes)
 
     def _reserve_frame(self, height: int, width: int, ssaa: int) -> None:
         """(Re)allocate the frame buffers when the size or the supersampling changes."""
@@ -189,6 +189,7 @@ class Renderer:
         self._clip = np.empty((4, count))
         self._screen_xy = np.empty((2, count), np.int64)
         self._screen_z = np.empty(count)
+        self._screen_q = np.empty(count)
         self._outcodes = np.empty(count, np.uint8)
         self._colours = np.empty((3, count))
         self._phong_attributes = np.empty((9, count))

@@ -35,14 +35,14 @@ def _guard(size):
 
 @helper
 def _to_screen(x, y, z, w, width, height):
-    """Clip space to screen space: (X, Y) int64 in 1/256 pixel and the reversed depth
-    ``(1 - z / w) / 2`` (float64, 1 on the near plane, 0 on the far one). The same
-    arithmetic as `project_vertices`, for the vertices that clipping makes."""
+    """Clip space to screen space: (X, Y) int64 in 1/256 pixel, the reversed depth
+    ``(1 - z / w) / 2`` (float64, 1 on the near plane, 0 on the far one) and ``1 / w``. The
+    same arithmetic as `project_vertices`, for the vertices that clipping makes."""
     inv_w = 1.0 / w
     sx = (x * inv_w + 1.0) * (0.5 * width)
     sy = (1.0 - y * inv_w) * (0.5 * height)
     return (np.int64(math.floor(sx * ONE + 0.5)), np.int64(math.floor(sy * ONE + 0.5)),
-            (w - z) * inv_w * 0.5)
+            (w - z) * inv_w * 0.5, inv_w)
 
 
 @helper
@@ -96,17 +96,17 @@ def _clip_polygon(polygon, source, slot, n, plane, gx, gy):
 
 
 @ngjit
-def clip_triangles(triangles, clip, screen_xy, screen_z, outcodes, attributes, width, height,
-                   out_xy, out_z, out_attributes, out_triangles, counts):
+def clip_triangles(triangles, clip, screen_xy, screen_z, screen_q, outcodes, attributes, width,
+                   height, out_xy, out_z, out_q, out_attributes, out_triangles, counts):
     """Clip the triangles that cross a clipping plane (but are not wholly outside one) and
     write what is left of them as a mesh for the rasterize kernels.
 
-    triangles: (m, 3) int32; clip: (4, n), screen_xy: (2, n), screen_z: (n,), outcodes:
-    (n,) from `project_vertices`; attributes: (a, n) float64; width, height: the screen.
-    Writes out_xy: (2, k) int64, out_z: (k,) float64, out_attributes: (a, k) float64 and
-    out_triangles: (j, 3) int32, room enough being ``MAX_POLYGON`` vertices and
-    ``MAX_POLYGON - 2`` triangles per triangle to clip, and counts: (2,) int64, the vertices
-    and triangles written. Each clipped triangle leaves a convex polygon, drawn as a fan
+    triangles: (m, 3) int32; clip: (4, n), screen_xy: (2, n), screen_z: (n,), screen_q:
+    (n,), outcodes: (n,) from `project_vertices`; attributes: (a, n) float64; width, height: the
+    screen. Writes out_xy: (2, k) int64, out_z: (k,) float64, out_q: (k,) float64,
+    out_attributes: (a, k) float64 and out_triangles: (j, 3) int32, room enough being
+    ``MAX_POLYGON`` vertices and ``MAX_POLYGON - 2`` triangles per triangle to clip, and
+    counts: (2,) int64, the vertices and triangles written. Each clipped triangle leaves a convex polygon, drawn as a fan
     (the near plane alone leaves a triangle or a quadrilateral).
     """
     gx, gy = _guard(width), _guard(height)
@@ -139,9 +139,10 @@ def clip_triangles(triangles, clip, screen_xy, screen_z, outcodes, attributes, w
             v, o = source[slot, k], vertex_count + k
             if v >= 0:
                 # A mesh vertex: keep its snapped position, so its neighbours agree exactly.
-                out_xy[0, o], out_xy[1, o], out_z[o] = screen_xy[0, v], screen_xy[1, v], screen_z[v]
+                out_xy[0, o], out_xy[1, o] = screen_xy[0, v], screen_xy[1, v]
+                out_z[o], out_q[o] = screen_z[v], screen_q[v]
             else:
-                out_xy[0, o], out_xy[1, o], out_z[o] = _to_screen(
+                out_xy[0, o], out_xy[1, o], out_z[o], out_q[o] = _to_screen(
                     polygon[slot, k, 0], polygon[slot, k, 1], polygon[slot, k, 2],
                     polygon[slot, k, 3], width, height)
             for c in range(a):

@@ -1,19 +1,42 @@
 """The draw loop: each triangle rejected, culled, covered and shaded.
 
-Attributes (depth, colour, normal, position) are interpolated linearly in screen space from
-plane equations through the three snapped vertices. Depth (``z / w``) is linear in screen
-space, so that is exact. For the rest it is Gouraud's own choice (1971) and it saves a
-division per pixel: the meshes here are finely tessellated (a triangle covers tens of
-pixels even in a full-HD frame), where the error of skipping the perspective correction is
-far below what 8-bit colour can show.
+Every quantity is set up per triangle as a plane equation in screen space through the three
+snapped vertices. Depth (``z / w``) is linear in screen space, so its plane is exact. An
+attribute (colour, normal, position) is linear across the triangle in space, not on the
+screen: perspective makes ``a / w`` and ``1 / w`` linear on the screen instead, so those
+are the planes, and the shader divides one by the other at each pixel, as a GPU does
+(Heckbert and Moreton, "Interpolation for Polygon Texture Mapping and Shading", 1991).
+Interpolating ``a`` itself on the screen, Gouraud's shortcut, drifts by tens of colour
+levels in a close-up, where a triangle's near corner is much nearer than its far one.
+
+Most triangles are far shallower than that, and the division costs Gouraud's cheap loop half
+as much again, so a triangle whose drift is bounded below ``AFFINE_BELOW`` levels keeps
+Gouraud's shortcut. Along a line from ``q_a`` to ``q_b`` the perspective-correct weight of
+the far end is ``t q_b / ((1 - t) q_a + t q_b)``, which departs from ``t`` by at most
+``(sqrt(r) - 1) / (sqrt(r) + 1)`` with ``r = q_b / q_a`` (at ``t = 1 / (1 + sqrt(r))``);
+within a triangle no further than with ``r`` the ratio of its largest ``q`` to its least, so
+an attribute ranging over ``d`` across the triangle drifts by at most that times ``d``. The
+Gouraud kernel draws the shallow triangles in a pass of their own, with a span shader of
+their own: one pass choosing a shader per triangle ran 70 % slower, even with every
+triangle taking the same one. Phong's attributes (positions, normals) sway the colour too
+sharply for such a bound, and the division is a small part of its pixel: Phong always
+divides.
 """
+
+import math
 
 import numpy as np
 
 from biceps.engine.jit import helper, inline, ngjit
 from biceps.engine.raster.clipping import FAR
 from biceps.engine.raster.coverage import ONE, may_cover, triangle_spans
-from biceps.engine.raster.shading import count_overdraw, shade_gouraud, shade_phong
+from biceps.engine.raster.shading import (count_overdraw, shade_gouraud, shade_gouraud_on_screen,
+                                          shade_phong)
+
+AFFINE_BELOW = 0.25
+"""Gouraud's colour levels below which a triangle's drift in perspective goes unseen: it is
+then interpolated on the screen, with no division per pixel."""
+EVERY = 0.0  # a drift limit that sorts no triangle out
 
 
 @helper
@@ -29,13 +52,36 @@ def _set_plane(planes, row, x0, y0, e1x, e1y, e2x, e2y, inv_det, v0, v1, v2):
     planes[row, 2] = ddy
 
 
-@inline
-def _draw_triangle(shade, i0, i1, i2, screen_xy, screen_z, attributes, lighting, pixels, depths,
-                   width, height, span_lo, span_hi, planes):
-    """Cover and shade the triangle of vertices i0, i1, i2 with the span shader ``shade``.
+@helper
+def _drift(q0, q1, q2, attributes, i0, i1, i2):
+    """The most an attribute of the triangle can drift from its perspective-correct value
+    when interpolated on the screen (see the module's docstring), in its own units."""
+    low = q0 if q0 < q1 else q1
+    low = low if low < q2 else q2
+    high = q0 if q0 > q1 else q1
+    high = high if high > q2 else q2
+    root = math.sqrt(high / low)
+    spread = 0.0
+    for k in range(attributes.shape[0]):
+        a0, a1, a2 = attributes[k, i0], attributes[k, i1], attributes[k, i2]
+        least = a0 if a0 < a1 else a1
+        least = least if least < a2 else a2
+        most = a0 if a0 > a1 else a1
+        most = most if most > a2 else a2
+        spread = spread if spread > most - least else most - least
+    return spread * (root - 1.0) / (root + 1.0)
 
-    screen_xy: (2, n) int64, screen_z: (n,) float64, attributes: (a, n) float64.
-    span_lo, span_hi: (height,) int64 and planes: (>= 1 + a, 3) float64: scratch.
+
+@inline
+def _draw_triangle(shade, perspective, i0, i1, i2, screen_xy, screen_z, screen_q, attributes,
+                   lighting, pixels, depths, width, height, span_lo, span_hi, planes):
+    """Cover and shade the triangle of vertices i0, i1, i2 with the span shader ``shade``,
+    in ``perspective`` or on the screen.
+
+    screen_xy: (2, n) int64, screen_z: (n,) float64, screen_q: (n,) float64 (1 / w),
+    attributes: (a, n) float64. span_lo, span_hi: (height,) int64 and planes:
+    (>= 2 + a, 3) float64: scratch, written with the planes of the depth, of q = 1 / w and of
+    each attribute times q (q taken as 1 on the screen).
     """
     x0, y0 = screen_xy[0, i0], screen_xy[1, i0]
     x1, y1 = screen_xy[0, i1], screen_xy[1, i1]
@@ -46,12 +92,13 @@ def _draw_triangle(shade, i0, i1, i2, screen_xy, screen_z, attributes, lighting,
     e2x, e2y = (x2 - x0) / ONE, (y2 - y0) / ONE
     inv_det = 1.0 / (e1x * e2y - e1y * e2x)
     fx, fy = x0 / ONE, y0 / ONE
-    for k in range(1 + attributes.shape[0]):
-        if k == 0:
-            v0, v1, v2 = screen_z[i0], screen_z[i1], screen_z[i2]
-        else:
-            v0, v1, v2 = attributes[k - 1, i0], attributes[k - 1, i1], attributes[k - 1, i2]
-        _set_plane(planes, k, fx, fy, e1x, e1y, e2x, e2y, inv_det, v0, v1, v2)
+    q0, q1, q2 = (screen_q[i0], screen_q[i1], screen_q[i2]) if perspective else (1.0, 1.0, 1.0)
+    _set_plane(planes, 0, fx, fy, e1x, e1y, e2x, e2y, inv_det, screen_z[i0], screen_z[i1],
+               screen_z[i2])
+    _set_plane(planes, 1, fx, fy, e1x, e1y, e2x, e2y, inv_det, q0, q1, q2)
+    for k in range(attributes.shape[0]):
+        _set_plane(planes, 2 + k, fx, fy, e1x, e1y, e2x, e2y, inv_det, attributes[k, i0] * q0,
+                   attributes[k, i1] * q1, attributes[k, i2] * q2)
     for y in range(first, end):
         lo, hi = span_lo[y], span_hi[y]
         if lo < hi:
@@ -60,9 +107,11 @@ def _draw_triangle(shade, i0, i1, i2, screen_xy, screen_z, attributes, lighting,
 
 
 @inline
-def _rasterize(shade, triangles, screen_xy, screen_z, outcodes, attributes, lighting, pixels,
-               depths, width, spans, planes):
-    """The triangle loop of the rasterize kernels, for the span shader ``shade``."""
+def _rasterize(shade, perspective, drift_limit, triangles, screen_xy, screen_z, screen_q,
+               outcodes, attributes, lighting, pixels, depths, width, spans, planes):
+    """The triangle loop of the rasterize kernels, for the span shader ``shade``, in
+    ``perspective`` or on the screen. With a ``drift_limit`` above 0 it draws only the
+    triangles whose drift is at least that (in perspective) or below it (on the screen)."""
     height = depths.shape[0] // width
     span_lo, span_hi = spans[0], spans[1]
     for t in range(triangles.shape[0]):
@@ -72,44 +121,51 @@ def _rasterize(shade, triangles, screen_xy, screen_z, outcodes, attributes, ligh
             continue  # wholly outside a plane; or crossing one, left for clip_triangles
         if may_cover(screen_xy[0, i0], screen_xy[1, i0], screen_xy[0, i1], screen_xy[1, i1],
                       screen_xy[0, i2], screen_xy[1, i2], width, height):
-            _draw_triangle(shade, i0, i1, i2, screen_xy, screen_z, attributes, lighting, pixels,
-                           depths, width, height, span_lo, span_hi, planes)
+            if drift_limit > 0.0 and perspective == (
+                    _drift(screen_q[i0], screen_q[i1], screen_q[i2], attributes, i0, i1, i2)
+                    < drift_limit):
+                continue  # drawn by the other pass
+            _draw_triangle(shade, perspective, i0, i1, i2, screen_xy, screen_z, screen_q,
+                           attributes, lighting, pixels, depths, width, height, span_lo,
+                           span_hi, planes)
 
 
 @ngjit
-def rasterize_gouraud(triangles, screen_xy, screen_z, outcodes, attributes, lighting, pixels,
-                      depths, width, spans, planes):
+def rasterize_gouraud(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
+                      pixels, depths, width, spans, planes):
     """Draw every front-facing triangle inside the clipping planes, nearest wins, with
     Gouraud shading.
 
     triangles: (m, 3) int32, counter-clockwise seen from the front.
-    screen_xy: (2, n) int64, screen_z: (n,) float64, outcodes: (n,) uint8, from
-    `project_vertices` (or `clip_triangles`). attributes: (a, n) float64, from
+    screen_xy: (2, n) int64, screen_z: (n,) float64, screen_q: (n,) float64, outcodes: (n,)
+    uint8, from `project_vertices` (or `clip_triangles`). attributes: (a, n) float64, from
     `light_vertices` (Gouraud, a = 3) or `phong_vertices` (Phong, a = 9); any for overdraw.
     lighting: `Lighting` (used by Phong).
     pixels: (3 h w,) uint8 and depths: (h w,) float32, the frame buffers flattened,
     cleared to the background and depth 0; width: w. spans: (2, h) int64 and planes:
-    (10, 3) float64 (at least 1 + a rows): scratch, passed in so that the kernel allocates
+    (11, 3) float64 (at least 2 + a rows): scratch, passed in so that the kernel allocates
     nothing (numba's ``np.empty`` is a sizeable compile of its own on a cold start).
 
     Triangles with a vertex outside a clipping plane other than the far one are left for
     `clip_triangles`.
     """
-    _rasterize(shade_gouraud, triangles, screen_xy, screen_z, outcodes, attributes, lighting,
-               pixels, depths, width, spans, planes)
+    _rasterize(shade_gouraud_on_screen, False, AFFINE_BELOW, triangles, screen_xy, screen_z,
+               screen_q, outcodes, attributes, lighting, pixels, depths, width, spans, planes)
+    _rasterize(shade_gouraud, True, AFFINE_BELOW, triangles, screen_xy, screen_z, screen_q,
+               outcodes, attributes, lighting, pixels, depths, width, spans, planes)
 
 
 @ngjit
-def rasterize_phong(triangles, screen_xy, screen_z, outcodes, attributes, lighting, pixels,
-                    depths, width, spans, planes):
+def rasterize_phong(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
+                    pixels, depths, width, spans, planes):
     """`rasterize_gouraud` with Phong shading."""
-    _rasterize(shade_phong, triangles, screen_xy, screen_z, outcodes, attributes, lighting,
-               pixels, depths, width, spans, planes)
+    _rasterize(shade_phong, True, EVERY, triangles, screen_xy, screen_z, screen_q, outcodes,
+               attributes, lighting, pixels, depths, width, spans, planes)
 
 
 @ngjit
-def rasterize_overdraw(triangles, screen_xy, screen_z, outcodes, attributes, lighting, pixels,
-                       depths, width, spans, planes):
+def rasterize_overdraw(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
+                       pixels, depths, width, spans, planes):
     """`rasterize_gouraud` counting the triangles that cover each pixel (`count_overdraw`)."""
-    _rasterize(count_overdraw, triangles, screen_xy, screen_z, outcodes, attributes, lighting,
-               pixels, depths, width, spans, planes)
+    _rasterize(count_overdraw, True, EVERY, triangles, screen_xy, screen_z, screen_q, outcodes,
+               attributes, lighting, pixels, depths, width, spans, planes)

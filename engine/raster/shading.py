@@ -2,8 +2,11 @@
 a triangle.
 
 Each fills the pixels at flat offsets start to end (exclusive, uint64), whose first centre
-is (xc, yc), from planes: (1 + a, 3) float64, the rows (value at the origin, d/dx, d/dy) of
-the depth and of the a attributes, which ``engine/raster/draw.py`` sets up per triangle.
+is (xc, yc), from planes: (2 + a, 3) float64, the rows (value at the origin, d/dx, d/dy) of
+the depth, of ``q = 1 / w`` and of the a attributes times q, which ``engine/raster/draw.py``
+sets up per triangle. An attribute at a pixel is its plane's value over q's: perspective
+correct. The division is done only for the pixels that pass the depth test, and not at all
+where ``draw`` finds the triangle shallow enough to interpolate on the screen (then q is 1).
 """
 
 import math
@@ -84,18 +87,49 @@ def _normalised(x, y, z):
 
 @inline
 def shade_gouraud(pixels, depths, start, end, xc, yc, planes, lighting):
-    """Gouraud: depth-test, then the colour interpolated from the vertices.
-    planes: depth, red, green, blue in [0, 255]. lighting: unused.
+    """Gouraud: depth-test, then the colour interpolated from the vertices, in perspective.
+    planes: depth, q, and red, green, blue in [0, 255] times q. lighting: unused.
+
+    Every plane steps along the span by forward differences in float64, exact enough over
+    any span; the colour, a convex combination of the vertices', is within [0, 255] but for
+    rounding, which `_byte` clamps.
+    """
+    z = planes[0, 0] + planes[0, 1] * xc + planes[0, 2] * yc
+    q = planes[1, 0] + planes[1, 1] * xc + planes[1, 2] * yc
+    r = planes[2, 0] + planes[2, 1] * xc + planes[2, 2] * yc
+    g = planes[3, 0] + planes[3, 1] * xc + planes[3, 2] * yc
+    b = planes[4, 0] + planes[4, 1] * xc + planes[4, 2] * yc
+    dz, dq, dr, dg, db = planes[0, 1], planes[1, 1], planes[2, 1], planes[3, 1], planes[4, 1]
+    three = np.uint64(3)
+    for i in range(start, end):
+        depth = np.float32(z)
+        if depth > depths[i]:
+            depths[i] = depth
+            w = 1.0 / q
+            pixels[three * i] = _byte(r * w)
+            pixels[three * i + np.uint64(1)] = _byte(g * w)
+            pixels[three * i + np.uint64(2)] = _byte(b * w)
+        z += dz
+        q += dq
+        r += dr
+        g += dg
+        b += db
+
+
+@inline
+def shade_gouraud_on_screen(pixels, depths, start, end, xc, yc, planes, lighting):
+    """`shade_gouraud` for a triangle shallow enough to interpolate on the screen (q is 1
+    throughout, see ``engine/raster/draw.py``): no division.
 
     The colour steps along the span in 16.16 fixed point. At a covered pixel centre it is a
     convex combination of the vertices' colours, in [0, 255], so the integer part of
     (colour + 1/2) is the rounded byte, with no clamping.
     """
     z = planes[0, 0] + planes[0, 1] * xc + planes[0, 2] * yc
-    r = _fixed(planes[1, 0] + planes[1, 1] * xc + planes[1, 2] * yc + 0.5)
-    g = _fixed(planes[2, 0] + planes[2, 1] * xc + planes[2, 2] * yc + 0.5)
-    b = _fixed(planes[3, 0] + planes[3, 1] * xc + planes[3, 2] * yc + 0.5)
-    dz, dr, dg, db = planes[0, 1], _fixed(planes[1, 1]), _fixed(planes[2, 1]), _fixed(planes[3, 1])
+    r = _fixed(planes[2, 0] + planes[2, 1] * xc + planes[2, 2] * yc + 0.5)
+    g = _fixed(planes[3, 0] + planes[3, 1] * xc + planes[3, 2] * yc + 0.5)
+    b = _fixed(planes[4, 0] + planes[4, 1] * xc + planes[4, 2] * yc + 0.5)
+    dz, dr, dg, db = planes[0, 1], _fixed(planes[2, 1]), _fixed(planes[3, 1]), _fixed(planes[4, 1])
     three = np.uint64(3)
     for i in range(start, end):
         depth = np.float32(z)
@@ -113,16 +147,18 @@ def shade_gouraud(pixels, depths, start, end, xc, yc, planes, lighting):
 
 @helper
 def _phong_attributes(planes, x, y):
-    """Phong's attributes at (x, y): world position (3), world normal (3), albedo (3)."""
-    return (planes[1, 0] + planes[1, 1] * x + planes[1, 2] * y,
-            planes[2, 0] + planes[2, 1] * x + planes[2, 2] * y,
-            planes[3, 0] + planes[3, 1] * x + planes[3, 2] * y,
-            planes[4, 0] + planes[4, 1] * x + planes[4, 2] * y,
-            planes[5, 0] + planes[5, 1] * x + planes[5, 2] * y,
-            planes[6, 0] + planes[6, 1] * x + planes[6, 2] * y,
-            planes[7, 0] + planes[7, 1] * x + planes[7, 2] * y,
-            planes[8, 0] + planes[8, 1] * x + planes[8, 2] * y,
-            planes[9, 0] + planes[9, 1] * x + planes[9, 2] * y)
+    """Phong's attributes at (x, y), in perspective: world position (3), world normal (3),
+    albedo (3)."""
+    w = 1.0 / (planes[1, 0] + planes[1, 1] * x + planes[1, 2] * y)
+    return ((planes[2, 0] + planes[2, 1] * x + planes[2, 2] * y) * w,
+            (planes[3, 0] + planes[3, 1] * x + planes[3, 2] * y) * w,
+            (planes[4, 0] + planes[4, 1] * x + planes[4, 2] * y) * w,
+            (planes[5, 0] + planes[5, 1] * x + planes[5, 2] * y) * w,
+            (planes[6, 0] + planes[6, 1] * x + planes[6, 2] * y) * w,
+            (planes[7, 0] + planes[7, 1] * x + planes[7, 2] * y) * w,
+            (planes[8, 0] + planes[8, 1] * x + planes[8, 2] * y) * w,
+            (planes[9, 0] + planes[9, 1] * x + planes[9, 2] * y) * w,
+            (planes[10, 0] + planes[10, 1] * x + planes[10, 2] * y) * w)
 
 
 @inline
@@ -131,8 +167,8 @@ def shade_phong(pixels, depths, start, end, xc, yc, planes, lighting):
     Lambert plus the Blinn-Phong highlight (Blinn, "Models of Light Reflection for Computer
     Synthesized Pictures", 1977) of a white point light.
 
-    planes: depth, world position (3), world normal (3), albedo (3) in [0, 255].
-    lighting: `Lighting`.
+    planes: depth, q, and times q: world position (3), world normal (3), albedo (3) in
+    [0, 255]. lighting: `Lighting`.
     """
     for i in range(start, end):
         x = xc + np.float64(i - start)

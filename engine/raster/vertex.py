@@ -49,13 +49,15 @@ def transform_vertices(vertices, normals, model, normal_matrix, world, world_nor
 
 
 @ngjit
-def project_vertices(world, view_projection, width, height, clip, screen_xy, screen_z, outcodes):
+def project_vertices(world, view_projection, width, height, clip, screen_xy, screen_z, screen_q,
+                     outcodes):
     """World space to clip space and, where inside the clip planes, to screen space.
 
     world: (3, n) float64. view_projection: (4, 4) float64. width, height: the screen in pixels.
     Writes clip: (4, n) float64; outcodes: (n,) uint8 (bits NEAR ... INVALID); and for the
     vertices inside every clipping plane (outcode 0 or FAR), screen_xy: (2, n) int64 in
-    1/256 pixel and screen_z: (n,) float64 depth (elsewhere 0).
+    1/256 pixel, screen_z: (n,) float64 depth and screen_q: (n,) float64, 1 / w, with which
+    the rasterizer interpolates attributes in perspective (elsewhere 0, 0 and 1).
 
     The outcode is branch-free apart from selects, so that the loop vectorises; INVALID
     if a coordinate is not finite (or so large that the sum of magnitudes overflows). The
@@ -100,6 +102,7 @@ def project_vertices(world, view_projection, width, height, clip, screen_xy, scr
         screen_xy[0, i] = np.int64(math.floor(sx * ONE + 0.5))
         screen_xy[1, i] = np.int64(math.floor(sy * ONE + 0.5))
         screen_z[i] = (cw - cz) * inv_w * 0.5
+        screen_q[i] = inv_w
 
 
 @ngjit

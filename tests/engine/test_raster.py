@@ -68,14 +68,14 @@ def draw_on_screen(points, triangles, width, height, *, colours=None,
     world[0] = 2.0 * points[:, 0] / width - 1.0
     world[1] = 1.0 - 2.0 * points[:, 1] / height
     clip, xy = np.empty((4, n)), np.empty((2, n), np.int64)
-    z, codes = np.empty(n), np.empty(n, np.uint8)
-    raster.project_vertices(world, np.eye(4), width, height, clip, xy, z, codes)
+    z, q, codes = np.empty(n), np.empty(n), np.empty(n, np.uint8)
+    raster.project_vertices(world, np.eye(4), width, height, clip, xy, z, q, codes)
     attributes = np.empty((0, n)) if colours is None else np.ascontiguousarray(colours.T)
     colour = np.zeros((height, width, 3), np.uint8)
     depths = np.zeros(height * width, np.float32)  # the far plane
-    kernel(np.ascontiguousarray(triangles, dtype=np.int32), xy, z, codes, attributes,
+    kernel(np.ascontiguousarray(triangles, dtype=np.int32), xy, z, q, codes, attributes,
            raster.Lighting(*[0.0] * 11), colour.reshape(-1), depths, width,
-           np.empty((2, height), np.int64), np.empty((10, 3)))
+           np.empty((2, height), np.int64), np.empty((11, 3)))
     return colour
 
 
@@ -133,12 +133,13 @@ def test_projection_applies_the_viewport_and_snaps_to_a_256th_of_a_pixel():
     camera = plain_camera(distance=1.0, fov=70.0, near=0.5, far=20.0)
     view_projection = camera.projection_matrix(1.5) @ camera.view_matrix()
     clip, xy = np.empty((4, 50)), np.empty((2, 50), np.int64)
-    z, codes = np.empty(50), np.empty(50, np.uint8)
-    raster.project_vertices(world, view_projection, 300, 200, clip, xy, z, codes)
+    z, q, codes = np.empty(50), np.empty(50), np.empty(50, np.uint8)
+    raster.project_vertices(world, view_projection, 300, 200, clip, xy, z, q, codes)
     expected = transform_points(viewport(300, 200) @ view_projection, world.T)
     assert np.all(codes == 0)
     np.testing.assert_array_equal(xy.T, np.floor(expected[:, :2] * 256 + 0.5))
     np.testing.assert_allclose(z, expected[:, 2], rtol=1e-12)
+    np.testing.assert_allclose(q, 1.0 / (1.0 - world[2]), rtol=1e-12)  # w: the distance
 
 
 def test_outcodes_name_the_planes_a_vertex_is_outside():
@@ -147,8 +148,8 @@ def test_outcodes_name_the_planes_a_vertex_is_outside():
     world = np.array([[0.0, 0.0, -1.5], [0.0, 0.0, 2.0], [1e9, 0.0, 0.0], [np.nan, 0.0, 0.0],
                       [0.5, -0.5, 0.0]]).T
     clip, xy = np.empty((4, 5)), np.empty((2, 5), np.int64)
-    z, codes = np.empty(5), np.empty(5, np.uint8)
-    raster.project_vertices(world.copy(), np.eye(4), 64, 48, clip, xy, z, codes)
+    z, q, codes = np.empty(5), np.empty(5), np.empty(5, np.uint8)
+    raster.project_vertices(world.copy(), np.eye(4), 64, 48, clip, xy, z, q, codes)
     assert codes.tolist() == [raster.NEAR, raster.FAR, raster.RIGHT, raster.INVALID, 0]
 
 
