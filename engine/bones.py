@@ -109,19 +109,23 @@ def _along(start, end, knots, ends) -> Part:
 def bone_parts(skeleton: Skeleton) -> dict[str, tuple[bool, tuple[Part, ...]]]:
     """Each bone's parts, by name ("scapula", "humerus", "radius", "ulna"), in its frame, and
     whether it turns with the forearm. Cached: the bones change only with the skeleton."""
-    up = skeleton.upper_arm / ARM26_UPPER_ARM  # the upper arm's scale
+    up = skeleton.upper_arm / ARM26_UPPER_ARM  # each side's scale
     fore = skeleton.forearm / ARM26_FOREARM
-    top = skeleton.upper_arm
-    head = HEAD_RADIUS * up
+    return {"scapula": (False, _scapula(skeleton, up)), "humerus": (False, _humerus(skeleton, up)),
+            "radius": (True, _radius(skeleton, fore)), "ulna": (True, _ulna(skeleton, up, fore))}
 
-    humerus = (
+
+def _humerus(skeleton: Skeleton, up: float) -> tuple[Part, ...]:
+    top = skeleton.upper_arm
+    return (
         # The shaft, from inside the condyles to inside the head: flared above the elbow,
         # slender in the middle, widening to the surgical neck.
         Part(np.zeros(3), np.array([0.0, 1.0, 0.0]), profile(
             np.array([[0.6, 1.35], [1.6, 1.4], [3.0, 1.22], [5.5, 1.0], [9.0, 0.9],
                       [15.0, 0.86], [21.0, 0.95], [24.5, 1.2], [26.5, 1.55], [27.6, 1.8]]) * up,
             (1.0 * up, 1.0 * up))),
-        Part(np.array([0.0, top, 0.0]), np.array([0.0, 1.0, 0.0]), _sphere_profile(head)),
+        Part(np.array([0.0, top, 0.0]), np.array([0.0, 1.0, 0.0]),
+             _sphere_profile(HEAD_RADIUS * up)),
         # The greater tubercle, a bulge on the outside of the neck, and the lesser, in front;
         # the biceps' tendon runs in the groove between them.
         _rod(np.array([0.5, top - 0.9 * up, 1.0 * up]), np.array([0.6, top - 2.0 * up, 0.9 * up]),
@@ -135,38 +139,48 @@ def bone_parts(skeleton: Skeleton) -> dict[str, tuple[bool, tuple[Part, ...]]]:
                       [3.2, 0.98], [3.6, 1.05], [4.5, 1.05], [5.1, 0.8], [5.6, 0.55]]) * up,
             (0.4 * up, 0.4 * up))),
     )
-    glenoid = np.array([0.0, top, -(head + 0.1 * up)])
-    scapula = (
+
+
+def _scapula(skeleton: Skeleton, up: float) -> tuple[Part, ...]:
+    glenoid = np.array([0.0, skeleton.upper_arm, -(HEAD_RADIUS + 0.1) * up])
+    return (
         # The glenoid's face against the head, the neck, and the start of the blade.
         _along(glenoid, glenoid + [0.0, 0.0, -3.5 * up],
                [[0.0, 1.2 * up], [0.12, 1.3 * up], [0.45, 0.95 * up], [1.0, 1.35 * up]],
                (0.15 * up, 0.9 * up)),
+        # The supraglenoid tubercle, under the origin.
         _knob(glenoid + [0.0, 0.8 * up, -0.4 * up], skeleton.origin.in_frame(), 0.45 * up),
     )
 
+
+# The forearm's parts are placed as the straight arm holds them: along is -y, forward +x,
+# lateral +z (see `Attachment.in_frame`).
+
+
+def _radius(skeleton: Skeleton, fore: float) -> tuple[Part, ...]:
+    top = np.array([0.0, -1.15 * fore, 1.45 * fore])  # under the capitulum
+    end = np.array([0.2 * fore, -skeleton.forearm, 2.0 * fore])
     insertion = skeleton.insertion.in_frame()
-    # Forearm frame as the straight arm holds it: along is -y, forward +x, lateral +z.
-    radius_top = np.array([0.0, -1.15 * up, 1.45 * fore])
-    radius_end = np.array([0.2 * fore, -skeleton.forearm, 2.0 * fore])
-    shaft = radius_end - radius_top
-    level = (radius_top[1] - insertion[1]) / -shaft[1]  # how far down the radius it sits
-    radius = (
-        _along(radius_top, radius_end,
+    level = (top[1] - insertion[1]) / (top[1] - end[1])  # how far down the radius it sits
+    return (
+        _along(top, end,
                [[0.0, 1.05 * fore], [0.04, 1.05 * fore], [0.07, 0.7 * fore], [0.15, 0.62 * fore],
                 [0.45, 0.68 * fore], [0.75, 0.82 * fore], [0.92, 1.05 * fore],
                 [1.0, 1.35 * fore]], (0.2 * fore, 0.4 * fore)),
-        _knob(radius_top + np.clip(level, 0.0, 1.0) * shaft, insertion, 0.5 * fore),
+        # The radial tuberosity, under the insertion.
+        _knob(top + np.clip(level, 0.0, 1.0) * (end - top), insertion, 0.5 * fore),
     )
-    ulna = (
-        # From the olecranon's tip, behind and above the elbow, to the ulna's head at the
-        # wrist; the trochlear notch wraps the trochlea.
+
+
+def _ulna(skeleton: Skeleton, up: float, fore: float) -> tuple[Part, ...]:
+    # From the olecranon's tip, behind and above the elbow (so sized with the humerus), to
+    # the ulna's head at the wrist; the trochlear notch wraps the trochlea.
+    return (
         _along([-1.55 * up, 2.3 * up, -1.0 * up], [-0.3 * fore, -skeleton.forearm, -1.3 * fore],
                [[0.0, 0.95 * up], [0.06, 1.3 * up], [0.13, 1.2 * up], [0.2, 1.0 * fore],
                 [0.35, 0.78 * fore], [0.7, 0.6 * fore], [0.95, 0.55 * fore],
                 [1.0, 0.75 * fore]], (0.8 * up, 0.6 * fore)),
     )
-    return {"scapula": (False, scapula), "humerus": (False, humerus),
-            "radius": (True, radius), "ulna": (True, ulna)}
 
 
 def _sphere_profile(radius: float, bands: int = 16) -> np.ndarray:
