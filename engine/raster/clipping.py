@@ -106,8 +106,9 @@ def clip_triangles(triangles, clip, screen_xy, screen_z, screen_q, outcodes, att
     screen. Writes out_xy: (2, k) int64, out_z: (k,) float64, out_q: (k,) float64,
     out_attributes: (a, k) float64 and out_triangles: (j, 3) int32, room enough being
     ``MAX_POLYGON`` vertices and ``MAX_POLYGON - 2`` triangles per triangle to clip, and
-    counts: (2,) int64, the vertices and triangles written. Each clipped triangle leaves a convex polygon, drawn as a fan
-    (the near plane alone leaves a triangle or a quadrilateral).
+    counts: (2,) int64, the vertices and triangles written. Each clipped triangle leaves a
+    convex polygon, drawn as a fan (the near plane alone leaves a triangle or a
+    quadrilateral).
     """
     gx, gy = _guard(width), _guard(height)
     a = attributes.shape[0]

@@ -17,10 +17,11 @@ the far end is ``t q_b / ((1 - t) q_a + t q_b)``, which departs from ``t`` by at
 within a triangle no further than with ``r`` the ratio of its largest ``q`` to its least, so
 an attribute ranging over ``d`` across the triangle drifts by at most that times ``d``. The
 Gouraud kernel draws the shallow triangles in a pass of their own, with a span shader of
-their own: one pass choosing a shader per triangle ran 70 % slower, even with every
-triangle taking the same one. Phong's attributes (positions, normals) sway the colour too
-sharply for such a bound, and the division is a small part of its pixel: Phong always
-divides.
+their own, and lists the others for a second pass: one pass choosing a shader per triangle
+ran 70 % slower, even with every triangle taking the same one, and a second pass over every
+triangle cost a third more on small pictures, where culling is most of the work. Phong's
+attributes (positions, normals) sway the colour too sharply for such a bound, and the
+division is a small part of its pixel: Phong always divides.
 """
 
 import math
@@ -36,7 +37,6 @@ from biceps.engine.raster.shading import (count_overdraw, shade_gouraud, shade_g
 AFFINE_BELOW = 0.25
 """Gouraud's colour levels below which a triangle's drift in perspective goes unseen: it is
 then interpolated on the screen, with no division per pixel."""
-EVERY = 0.0  # a drift limit that sorts no triangle out
 
 
 @helper
@@ -107,32 +107,33 @@ def _draw_triangle(shade, perspective, i0, i1, i2, screen_xy, screen_z, screen_q
 
 
 @inline
-def _rasterize(shade, perspective, drift_limit, triangles, screen_xy, screen_z, screen_q,
-               outcodes, attributes, lighting, pixels, depths, width, spans, planes):
+def _visible(triangles, t, screen_xy, outcodes, width, height):
+    """Whether triangle t may cover a pixel: inside every clipping plane but the far one
+    (a triangle crossing one is left for `clip_triangles`), front-facing, on the screen."""
+    i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
+    c0, c1, c2 = outcodes[i0], outcodes[i1], outcodes[i2]
+    if c0 & c1 & c2 or (c0 | c1 | c2) & ~FAR:
+        return False
+    return may_cover(screen_xy[0, i0], screen_xy[1, i0], screen_xy[0, i1], screen_xy[1, i1],
+                     screen_xy[0, i2], screen_xy[1, i2], width, height)
+
+
+@inline
+def _rasterize(shade, triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
+               pixels, depths, width, spans, planes):
     """The triangle loop of the rasterize kernels, for the span shader ``shade``, in
-    ``perspective`` or on the screen. With a ``drift_limit`` above 0 it draws only the
-    triangles whose drift is at least that (in perspective) or below it (on the screen)."""
+    perspective."""
     height = depths.shape[0] // width
-    span_lo, span_hi = spans[0], spans[1]
     for t in range(triangles.shape[0]):
-        i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
-        c0, c1, c2 = outcodes[i0], outcodes[i1], outcodes[i2]
-        if c0 & c1 & c2 or (c0 | c1 | c2) & ~FAR:
-            continue  # wholly outside a plane; or crossing one, left for clip_triangles
-        if may_cover(screen_xy[0, i0], screen_xy[1, i0], screen_xy[0, i1], screen_xy[1, i1],
-                      screen_xy[0, i2], screen_xy[1, i2], width, height):
-            if drift_limit > 0.0 and perspective == (
-                    _drift(screen_q[i0], screen_q[i1], screen_q[i2], attributes, i0, i1, i2)
-                    < drift_limit):
-                continue  # drawn by the other pass
-            _draw_triangle(shade, perspective, i0, i1, i2, screen_xy, screen_z, screen_q,
-                           attributes, lighting, pixels, depths, width, height, span_lo,
-                           span_hi, planes)
+        if _visible(triangles, t, screen_xy, outcodes, width, height):
+            _draw_triangle(shade, True, triangles[t, 0], triangles[t, 1], triangles[t, 2],
+                           screen_xy, screen_z, screen_q, attributes, lighting, pixels, depths,
+                           width, height, spans[0], spans[1], planes)
 
 
 @ngjit
 def rasterize_gouraud(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
-                      pixels, depths, width, spans, planes):
+                      pixels, depths, width, spans, planes, deferred):
     """Draw every front-facing triangle inside the clipping planes, nearest wins, with
     Gouraud shading.
 
@@ -143,29 +144,49 @@ def rasterize_gouraud(triangles, screen_xy, screen_z, screen_q, outcodes, attrib
     lighting: `Lighting` (used by Phong).
     pixels: (3 h w,) uint8 and depths: (h w,) float32, the frame buffers flattened,
     cleared to the background and depth 0; width: w. spans: (2, h) int64 and planes:
-    (11, 3) float64 (at least 2 + a rows): scratch, passed in so that the kernel allocates
-    nothing (numba's ``np.empty`` is a sizeable compile of its own on a cold start).
+    (11, 3) float64 (at least 2 + a rows) and deferred: (m,) int32: scratch, passed in so
+    that the kernel allocates nothing (numba's ``np.empty`` is a sizeable compile of its own
+    on a cold start).
 
     Triangles with a vertex outside a clipping plane other than the far one are left for
-    `clip_triangles`.
+    `clip_triangles`. The shallow triangles are drawn first, on the screen; the others are
+    deferred (their indices listed in ``deferred``) to a second pass in perspective, so each
+    pass has one span shader (see the module's docstring).
     """
-    _rasterize(shade_gouraud_on_screen, False, AFFINE_BELOW, triangles, screen_xy, screen_z,
-               screen_q, outcodes, attributes, lighting, pixels, depths, width, spans, planes)
-    _rasterize(shade_gouraud, True, AFFINE_BELOW, triangles, screen_xy, screen_z, screen_q,
-               outcodes, attributes, lighting, pixels, depths, width, spans, planes)
+    height = depths.shape[0] // width
+    count = 0
+    for t in range(triangles.shape[0]):
+        if not _visible(triangles, t, screen_xy, outcodes, width, height):
+            continue
+        i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
+        if _drift(screen_q[i0], screen_q[i1], screen_q[i2], attributes, i0, i1, i2) \
+                >= AFFINE_BELOW:
+            deferred[count] = t
+            count += 1
+            continue
+        _draw_triangle(shade_gouraud_on_screen, False, i0, i1, i2, screen_xy, screen_z,
+                       screen_q, attributes, lighting, pixels, depths, width, height, spans[0],
+                       spans[1], planes)
+    for k in range(count):
+        t = deferred[k]
+        _draw_triangle(shade_gouraud, True, triangles[t, 0], triangles[t, 1], triangles[t, 2],
+                       screen_xy, screen_z, screen_q, attributes, lighting, pixels, depths,
+                       width, height, spans[0], spans[1], planes)
 
 
 @ngjit
 def rasterize_phong(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
-                    pixels, depths, width, spans, planes):
-    """`rasterize_gouraud` with Phong shading."""
-    _rasterize(shade_phong, True, EVERY, triangles, screen_xy, screen_z, screen_q, outcodes,
-               attributes, lighting, pixels, depths, width, spans, planes)
+                    pixels, depths, width, spans, planes, deferred):
+    """`rasterize_gouraud` with Phong shading, every triangle in perspective (deferred:
+    unused)."""
+    _rasterize(shade_phong, triangles, screen_xy, screen_z, screen_q, outcodes, attributes,
+               lighting, pixels, depths, width, spans, planes)
 
 
 @ngjit
 def rasterize_overdraw(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
-                       pixels, depths, width, spans, planes):
-    """`rasterize_gouraud` counting the triangles that cover each pixel (`count_overdraw`)."""
-    _rasterize(count_overdraw, True, EVERY, triangles, screen_xy, screen_z, screen_q, outcodes,
-               attributes, lighting, pixels, depths, width, spans, planes)
+                       pixels, depths, width, spans, planes, deferred):
+    """`rasterize_gouraud` counting the triangles that cover each pixel (`count_overdraw`;
+    deferred: unused)."""
+    _rasterize(count_overdraw, triangles, screen_xy, screen_z, screen_q, outcodes, attributes,
+               lighting, pixels, depths, width, spans, planes)
