@@ -106,10 +106,12 @@ def _draw_triangle(shade, perspective, i0, i1, i2, screen_xy, screen_z, screen_q
                   lo + 0.5, y + 0.5, planes, lighting)
 
 
-@inline
+@helper
 def _visible(triangles, t, screen_xy, outcodes, width, height):
     """Whether triangle t may cover a pixel: inside every clipping plane but the far one
-    (a triangle crossing one is left for `clip_triangles`), front-facing, on the screen."""
+    (a triangle crossing one is left for `clip_triangles`), front-facing, on the screen.
+    A helper, for LLVM to inline: inlined by numba (``@inline``) it made Phong's kernel half
+    as slow again on small pictures, 2.0 to 2.9 ms for 100k triangles at 200x120."""
     i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
     c0, c1, c2 = outcodes[i0], outcodes[i1], outcodes[i2]
     if c0 & c1 & c2 or (c0 | c1 | c2) & ~FAR:
@@ -124,11 +126,12 @@ def _rasterize(shade, triangles, screen_xy, screen_z, screen_q, outcodes, attrib
     """The triangle loop of the rasterize kernels, for the span shader ``shade``, in
     perspective."""
     height = depths.shape[0] // width
+    span_lo, span_hi = spans[0], spans[1]  # once: each view made in the loop costs a refcount
     for t in range(triangles.shape[0]):
         if _visible(triangles, t, screen_xy, outcodes, width, height):
             _draw_triangle(shade, True, triangles[t, 0], triangles[t, 1], triangles[t, 2],
                            screen_xy, screen_z, screen_q, attributes, lighting, pixels, depths,
-                           width, height, spans[0], spans[1], planes)
+                           width, height, span_lo, span_hi, planes)
 
 
 @ngjit
@@ -154,6 +157,7 @@ def rasterize_gouraud(triangles, screen_xy, screen_z, screen_q, outcodes, attrib
     pass has one span shader (see the module's docstring).
     """
     height = depths.shape[0] // width
+    span_lo, span_hi = spans[0], spans[1]
     count = 0
     for t in range(triangles.shape[0]):
         if not _visible(triangles, t, screen_xy, outcodes, width, height):
@@ -165,13 +169,13 @@ def rasterize_gouraud(triangles, screen_xy, screen_z, screen_q, outcodes, attrib
             count += 1
             continue
         _draw_triangle(shade_gouraud_on_screen, False, i0, i1, i2, screen_xy, screen_z,
-                       screen_q, attributes, lighting, pixels, depths, width, height, spans[0],
-                       spans[1], planes)
+                       screen_q, attributes, lighting, pixels, depths, width, height, span_lo,
+                       span_hi, planes)
     for k in range(count):
         t = deferred[k]
         _draw_triangle(shade_gouraud, True, triangles[t, 0], triangles[t, 1], triangles[t, 2],
                        screen_xy, screen_z, screen_q, attributes, lighting, pixels, depths,
-                       width, height, spans[0], spans[1], planes)
+                       width, height, span_lo, span_hi, planes)
 
 
 @ngjit
