@@ -77,22 +77,28 @@ def _unit_rgb(colour: str) -> np.ndarray:
     return np.array(rgb(colour), dtype=np.float32) / 255.0
 
 
-def outline(vertices: np.ndarray, directions: int = 256) -> np.ndarray:
+def outline(vertices: np.ndarray, directions: int = 256, stride: int = 4) -> np.ndarray:
     """The vertices (k, 3), k <= ``directions``, farthest out along directions spread evenly
-    over the sphere (a Fibonacci lattice): all that framing needs of ``vertices`` (n, 3).
+    over the sphere (a Fibonacci lattice), among every ``stride``-th of ``vertices`` (n, 3):
+    all that framing needs of them.
 
     Neighbouring directions are at most about 13 degrees apart, so no vertex stands out of
-    the outline's hull by more than 1 - cos(6.5 degrees), 0.7 %, of the arm's reach: far
-    inside the margin `FILL` leaves. Framing a few hundred points instead of every vertex
-    takes a fraction of a millisecond instead of several.
+    the outline's hull by more than 1 - cos(6.5 degrees), 0.7 %, of the arm's reach; and
+    every 4th vertex of a ring of 48 misses the ring's outermost point by at most
+    1 - cos(15 degrees) of the ring's radius, a few tenths of a millimetre: both far inside
+    the margin `FILL` leaves. Framing a few hundred points instead of every vertex takes a
+    fraction of a millisecond instead of several, and the outline itself 2 ms.
     """
     index = np.arange(directions) + 0.5
     height = 1.0 - 2.0 * index / directions
     turn = np.pi * (1.0 + 5.0**0.5) * index
     ring = np.sqrt(1.0 - height**2)
     lattice = np.column_stack([ring * np.cos(turn), height, ring * np.sin(turn)])
-    centre = (vertices.min(axis=0) + vertices.max(axis=0)) / 2.0
-    return vertices[np.unique(np.argmax(lattice @ (vertices - centre).T, axis=1))]
+    some = vertices[::stride]
+    centre = (some.min(axis=0) + some.max(axis=0)) / 2.0
+    # einsum, not BLAS, whose threads took tens of milliseconds to start on a busy machine.
+    reach = np.einsum("kc,cn->kn", lattice, np.ascontiguousarray((some - centre).T))
+    return some[np.unique(np.argmax(reach, axis=1))]
 
 
 def view_camera(view: View, vertices: np.ndarray, aspect: float) -> tuple[Camera, np.ndarray]:
