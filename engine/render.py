@@ -30,7 +30,6 @@ class Renderer:
     def __init__(self):
         self._frame: tuple | None = None  # (height, width, ssaa)
         self._planes = np.empty((11, 3))  # the rasterizers' scratch: depth, 1 / w, 9 attributes
-        self._deferred = np.empty(0, np.int32)  # and the triangles Gouraud draws in perspective
         self._vertex_count = -1
 
     def render(self, vertices, normals, triangles, albedo, model_matrix, camera: Camera,
@@ -139,8 +138,7 @@ class Renderer:
         """Draw ``triangles`` of the projected vertices into the frame buffers."""
         rasterize(triangles, self._screen_xy, self._screen_z, self._screen_q, self._outcodes,
                   attributes, lighting, self._colour.reshape(-1), self._depth.reshape(-1),
-                  self._depth.shape[1], self._spans, self._planes,
-                  self._deferral(len(triangles)))
+                  self._depth.shape[1], self._spans, self._planes)
 
     def _downsample(self) -> None:
         """Average the supersampled frame into the output buffer."""
@@ -166,13 +164,7 @@ class Renderer:
         inside = np.zeros(room, np.uint8)  # every outcode 0: the clipper did its work
         rasterize(_read_only(out_triangles[:counts[1]]), out_xy, out_z, out_q, inside,
                   out_attributes, lighting, self._colour.reshape(-1), self._depth.reshape(-1),
-                  width, self._spans, self._planes, self._deferral(int(counts[1])))
-
-    def _deferral(self, count: int) -> np.ndarray:
-        """The rasterizers' scratch for ``count`` triangles' indices: (count,) int32 or more."""
-        if len(self._deferred) < count:
-            self._deferred = np.empty(count, np.int32)
-        return self._deferred
+                  width, self._spans, self._planes)
 
     def _reserve_frame(self, height: int, width: int, ssaa: int) -> None:
         """(Re)allocate the frame buffers when the size or the supersampling changes."""

@@ -16,10 +16,8 @@ the far end is ``t q_b / ((1 - t) q_a + t q_b)``, which departs from ``t`` by at
 ``(sqrt(r) - 1) / (sqrt(r) + 1)`` with ``r = q_b / q_a`` (at ``t = 1 / (1 + sqrt(r))``);
 within a triangle no further than with ``r`` the ratio of its largest ``q`` to its least, so
 an attribute ranging over ``d`` across the triangle drifts by at most that times ``d``. The
-Gouraud kernel draws the shallow triangles in a pass of their own, with a span shader of
-their own, and lists the others for a second pass: one pass choosing a shader per triangle
-ran 70 % slower, even with every triangle taking the same one, and a second pass over every
-triangle cost a third more on small pictures, where culling is most of the work. Phong's
+triangle picks its span loop once, from two written out in full: choosing inside the span
+shader, for every row, ran 70 % slower, even with every triangle taking the same one. Phong's
 attributes (positions, normals) sway the colour too sharply for such a bound, and the
 division is a small part of its pixel: Phong always divides.
 """
@@ -73,10 +71,11 @@ def _drift(q0, q1, q2, attributes, i0, i1, i2):
 
 
 @inline
-def _draw_triangle(shade, perspective, i0, i1, i2, screen_xy, screen_z, screen_q, attributes,
-                   lighting, pixels, depths, width, height, span_lo, span_hi, planes):
-    """Cover and shade the triangle of vertices i0, i1, i2 with the span shader ``shade``,
-    in ``perspective`` or on the screen.
+def _draw_triangle(shade, shade_on_screen, perspective, i0, i1, i2, screen_xy, screen_z,
+                   screen_q, attributes, lighting, pixels, depths, width, height, span_lo,
+                   span_hi, planes):
+    """Cover and shade the triangle of vertices i0, i1, i2 with the span shader ``shade``
+    in ``perspective``, or else with ``shade_on_screen`` (the two may be the same).
 
     screen_xy: (2, n) int64, screen_z: (n,) float64, screen_q: (n,) float64 (1 / w),
     attributes: (a, n) float64. span_lo, span_hi: (height,) int64 and planes:
@@ -99,11 +98,18 @@ def _draw_triangle(shade, perspective, i0, i1, i2, screen_xy, screen_z, screen_q
     for k in range(attributes.shape[0]):
         _set_plane(planes, 2 + k, fx, fy, e1x, e1y, e2x, e2y, inv_det, attributes[k, i0] * q0,
                    attributes[k, i1] * q1, attributes[k, i2] * q2)
-    for y in range(first, end):
-        lo, hi = span_lo[y], span_hi[y]
-        if lo < hi:
-            shade(pixels, depths, np.uint64(y * width + lo), np.uint64(y * width + hi),
-                  lo + 0.5, y + 0.5, planes, lighting)
+    if perspective:
+        for y in range(first, end):
+            lo, hi = span_lo[y], span_hi[y]
+            if lo < hi:
+                shade(pixels, depths, np.uint64(y * width + lo), np.uint64(y * width + hi),
+                      lo + 0.5, y + 0.5, planes, lighting)
+    else:
+        for y in range(first, end):
+            lo, hi = span_lo[y], span_hi[y]
+            if lo < hi:
+                shade_on_screen(pixels, depths, np.uint64(y * width + lo),
+                                np.uint64(y * width + hi), lo + 0.5, y + 0.5, planes, lighting)
 
 
 @helper
@@ -129,14 +135,14 @@ def _rasterize(shade, triangles, screen_xy, screen_z, screen_q, outcodes, attrib
     span_lo, span_hi = spans[0], spans[1]  # once: each view made in the loop costs a refcount
     for t in range(triangles.shape[0]):
         if _visible(triangles, t, screen_xy, outcodes, width, height):
-            _draw_triangle(shade, True, triangles[t, 0], triangles[t, 1], triangles[t, 2],
-                           screen_xy, screen_z, screen_q, attributes, lighting, pixels, depths,
-                           width, height, span_lo, span_hi, planes)
+            _draw_triangle(shade, shade, True, triangles[t, 0], triangles[t, 1],
+                           triangles[t, 2], screen_xy, screen_z, screen_q, attributes, lighting,
+                           pixels, depths, width, height, span_lo, span_hi, planes)
 
 
 @ngjit
 def rasterize_gouraud(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
-                      pixels, depths, width, spans, planes, deferred):
+                      pixels, depths, width, spans, planes):
     """Draw every front-facing triangle inside the clipping planes, nearest wins, with
     Gouraud shading.
 
@@ -147,50 +153,37 @@ def rasterize_gouraud(triangles, screen_xy, screen_z, screen_q, outcodes, attrib
     lighting: `Lighting` (used by Phong).
     pixels: (3 h w,) uint8 and depths: (h w,) float32, the frame buffers flattened,
     cleared to the background and depth 0; width: w. spans: (2, h) int64 and planes:
-    (11, 3) float64 (at least 2 + a rows) and deferred: (m,) int32: scratch, passed in so
-    that the kernel allocates nothing (numba's ``np.empty`` is a sizeable compile of its own
-    on a cold start).
+    (11, 3) float64 (at least 2 + a rows): scratch, passed in so that the kernel allocates
+    nothing (numba's ``np.empty`` is a sizeable compile of its own on a cold start).
 
     Triangles with a vertex outside a clipping plane other than the far one are left for
-    `clip_triangles`. The shallow triangles are drawn first, on the screen; the others are
-    deferred (their indices listed in ``deferred``) to a second pass in perspective, so each
-    pass has one span shader (see the module's docstring).
+    `clip_triangles`. A triangle shallow enough is shaded on the screen, with no division
+    (see the module's docstring).
     """
     height = depths.shape[0] // width
     span_lo, span_hi = spans[0], spans[1]
-    count = 0
     for t in range(triangles.shape[0]):
         if not _visible(triangles, t, screen_xy, outcodes, width, height):
             continue
         i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
-        if _drift(screen_q[i0], screen_q[i1], screen_q[i2], attributes, i0, i1, i2) \
-                >= AFFINE_BELOW:
-            deferred[count] = t
-            count += 1
-            continue
-        _draw_triangle(shade_gouraud_on_screen, False, i0, i1, i2, screen_xy, screen_z,
-                       screen_q, attributes, lighting, pixels, depths, width, height, span_lo,
-                       span_hi, planes)
-    for k in range(count):
-        t = deferred[k]
-        _draw_triangle(shade_gouraud, True, triangles[t, 0], triangles[t, 1], triangles[t, 2],
-                       screen_xy, screen_z, screen_q, attributes, lighting, pixels, depths,
-                       width, height, span_lo, span_hi, planes)
+        deep = _drift(screen_q[i0], screen_q[i1], screen_q[i2], attributes, i0, i1, i2) \
+            >= AFFINE_BELOW
+        _draw_triangle(shade_gouraud, shade_gouraud_on_screen, deep, i0, i1, i2, screen_xy,
+                       screen_z, screen_q, attributes, lighting, pixels, depths, width, height,
+                       span_lo, span_hi, planes)
 
 
 @ngjit
 def rasterize_phong(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
-                    pixels, depths, width, spans, planes, deferred):
-    """`rasterize_gouraud` with Phong shading, every triangle in perspective (deferred:
-    unused)."""
+                    pixels, depths, width, spans, planes):
+    """`rasterize_gouraud` with Phong shading, every triangle in perspective."""
     _rasterize(shade_phong, triangles, screen_xy, screen_z, screen_q, outcodes, attributes,
                lighting, pixels, depths, width, spans, planes)
 
 
 @ngjit
 def rasterize_overdraw(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
-                       pixels, depths, width, spans, planes, deferred):
-    """`rasterize_gouraud` counting the triangles that cover each pixel (`count_overdraw`;
-    deferred: unused)."""
+                       pixels, depths, width, spans, planes):
+    """`rasterize_gouraud` counting the triangles that cover each pixel (`count_overdraw`)."""
     _rasterize(count_overdraw, triangles, screen_xy, screen_z, screen_q, outcodes, attributes,
                lighting, pixels, depths, width, spans, planes)

@@ -75,7 +75,7 @@ def draw_on_screen(points, triangles, width, height, *, colours=None,
     depths = np.zeros(height * width, np.float32)  # the far plane
     kernel(np.ascontiguousarray(triangles, dtype=np.int32), xy, z, q, codes, attributes,
            raster.Lighting(*[0.0] * 11), colour.reshape(-1), depths, width,
-           np.empty((2, height), np.int64), np.empty((11, 3)), np.empty(len(triangles), np.int32))
+           np.empty((2, height), np.int64), np.empty((11, 3)))
     return colour
 
 
