@@ -38,12 +38,6 @@ class Arm:
         return self.skeleton.flexion(self.length)
 
     @property
-    def moment_arm(self) -> float:
-        """The muscle's moment arm about the elbow (cm): its lever, how much it shortens
-        per radian the elbow bends."""
-        return self.skeleton.moment_arm(self.flexion)
-
-    @property
     def pose(self) -> ArmPose:
         return self.skeleton.pose(self.length)
 

@@ -45,10 +45,11 @@ def test_every_number_is_printed_in_its_shortest_exact_form():
             assert text == repr(float(text))
 
 
-def test_the_moment_arm_grows_from_nothing_at_a_straight_arm():
+def test_the_moment_arm_grows_from_a_straight_arms_lever():
     rows = _csv_rows("--from", 0, "--to", 90, "--step", 30)
     arms = [float(row["moment_arm_cm"]) for row in rows]
-    assert arms[0] == pytest.approx(0.0, abs=1e-12)
+    # The insertion in front of the forearm's axis: 0.64 cm straight (arm26: 0.94).
+    assert arms[0] == pytest.approx(0.641, abs=1e-3)
     assert arms == sorted(arms) and arms[-1] > 4.0  # about 5 cm at a right angle
 
 

@@ -15,13 +15,15 @@ from biceps.engine.skeleton import Skeleton
 from biceps.engine.sweep import MOST_ANGLES, angles, flexion_range, sweep
 
 ARM = load_config(DEFAULT_CONFIG).arm
+ON_THE_AXES = dict(origin_forward=0.0, origin_lateral=0.0, insertion_forward=0.0,
+                   insertion_lateral=0.0)
 
 
 def test_a_3_4_5_triangle_has_the_moment_arm_of_its_height():
     # Origin 4 cm up the upper arm, insertion 3 cm down the forearm, muscle 5 cm: the elbow
     # is at 90 degrees, and the distance from the right angle to the hypotenuse is 3 * 4 / 5.
     muscle = Muscle.of([0.1, 0.2, 0.1], [0.0, 0.1, 0.0], 5.0)
-    arm = Arm(muscle, Skeleton(origin_to_elbow=4.0, elbow_to_insertion=3.0))
+    arm = Arm(muscle, Skeleton(origin_to_elbow=4.0, elbow_to_insertion=3.0, **ON_THE_AXES))
     assert arm.moment_arm == pytest.approx(2.4, rel=1e-14)
 
 
@@ -33,9 +35,20 @@ def test_the_moment_arm_is_the_length_lost_per_radian_of_flexion(flexion):
         shortened / np.radians(2 * step), rel=1e-7)
 
 
-def test_a_straight_arm_gives_the_muscle_no_leverage_and_flexion_gives_a_flexor_some():
-    assert ARM.at_flexion(0.0).moment_arm == pytest.approx(0.0, abs=1e-12)
-    assert ARM.at_flexion(1.0).moment_arm > 0
+def test_a_straight_arm_gives_the_muscle_leverage_only_off_the_bones_axes():
+    # The insertion in front of the forearm's axis gives the biceps a lever even with the
+    # arm straight (arm26: 0.94 cm); with both attachments on the axes, as the seed had
+    # them, it has none until the elbow bends.
+    assert ARM.at_flexion(0.0).moment_arm == pytest.approx(0.641, abs=1e-3)
+    on_the_axes = replace(ARM, skeleton=replace(ARM.skeleton, **ON_THE_AXES))
+    assert on_the_axes.at_flexion(0.0).moment_arm == pytest.approx(0.0, abs=1e-12)
+    assert on_the_axes.at_flexion(1.0).moment_arm > 0
+
+
+@pytest.mark.parametrize("flexion", [0.0, 60.0, 130.0])
+def test_the_pose_and_the_law_of_cosines_agree_on_the_moment_arm(flexion):
+    assert ARM.at_flexion(flexion).moment_arm == pytest.approx(
+        ARM.skeleton.moment_arm(flexion), rel=1e-12)
 
 
 def test_angles_end_on_the_last_step_without_rounding_build_up():
