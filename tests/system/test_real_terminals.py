@@ -191,8 +191,10 @@ def test_sixel_in_xterm(display, tmp_path):
     xterm = ["xterm", "-ti", "vt340", "-xrm", "XTerm*numColorRegisters: 256", "-fa",
              "DejaVu Sans Mono", "-fs", "10", "-geometry", f"{COLUMNS}x{ROWS}+0+0", "-e"]
     # Sixel quantises to 256 colours: measured on this picture (8x17-pixel cells), a mean
-    # difference of 0.70 per channel and no channel more than 9 off.
-    _run_in(display, xterm, "sixel", tmp_path, mean=1.5, share=0.001, gap=16)
+    # difference of 1.29 per channel and 1.1 % of the pixels more than 16 off: the bones'
+    # dark silhouettes, rare shades the octree folds into others, now that the arm and its
+    # bones fill the picture (on the thin arm of before: 0.70, none more than 9 off).
+    _run_in(display, xterm, "sixel", tmp_path, mean=1.5, share=0.02, gap=16)
 
 
 def test_kitty_graphics_in_kitty(display, tmp_path):
