@@ -58,7 +58,13 @@ class Arm:
         return float(np.cross(pose.insertion - pose.elbow, pull) @ HINGE_AXIS)
 
     def length_range(self) -> tuple[float, float]:
-        """The shortest and longest length (cm): the joint's range and the config's limits."""
+        """The shortest and longest length (cm): the joint's range, the config's limits and
+        the muscle's own (stretched too far, a node thins to nothing)."""
+        low, high = self._set_range()
+        return low, min(high, self.muscle.longest_length)
+
+    def _set_range(self) -> tuple[float, float]:
+        """The joint's range and the config's limits, without the muscle's own."""
         low, high = self.skeleton.length_range()
         if self.min_length is not None:
             low = max(low, self.min_length)
@@ -74,6 +80,7 @@ class Arm:
                 f"length {length:.2f} cm is outside what this arm allows: "
                 f"{low:.2f} to {high:.2f} cm (elbow flexion "
                 f"{self.skeleton.flexion(high):.0f} to {self.skeleton.flexion(low):.0f} degrees)"
+                + self._muscle_limit_note(high)
             )
         return replace(self, muscle=self.muscle.at_length(length))
 
@@ -91,22 +98,36 @@ class Arm:
 
         Returns the new arm and, when it stopped at a limit, a sentence saying which.
         """
+        return self.towards(self.length + change)
+
+    def towards(self, length: float) -> tuple[Arm, str | None]:
+        """The muscle at ``length`` cm, or at the limit on the way there, and then a sentence
+        saying which limit stopped it."""
         low, high = self.length_range()
-        target = self.length + change
-        if target < low:
+        if length < low:
             return self.at_length(low), self._limit_note(low, "shortest")
-        if target > high:
+        if length > high:
             return self.at_length(high), self._limit_note(high, "longest")
-        return self.at_length(target), None
+        return self.at_length(length), None
 
     def _limit_note(self, length: float, which: str) -> str:
         flexion = self.skeleton.flexion(length)
+        if which == "longest" and length < self._set_range()[1]:
+            return (
+                f"the muscle is at its longest, {length:.2f} cm: stretched further, "
+                f"{self.muscle.thinnest_note()}"
+            )
         if which == "longest" and flexion < 0.05:
             return f"the arm is straight: the muscle is at its longest, {length:.2f} cm"
         return (
             f"the muscle is at its {which}, {length:.2f} cm "
             f"(elbow flexion {flexion:.0f} degrees)"
         )
+
+    def _muscle_limit_note(self, high: float) -> str:
+        if high < self._set_range()[1]:
+            return f"; stretched further, {self.muscle.thinnest_note()}"
+        return ""
 
     def with_muscle(self, muscle: Muscle) -> Arm:
         """The arm with an edited muscle (same length, so the skeleton does not move)."""

@@ -30,6 +30,14 @@ VOLUME_MODES: tuple[VolumeMode, ...] = ("closed", "frusta")
 _NEWTON_MAX_STEPS = 200
 
 
+def thinnest_radius() -> float:
+    """The smallest radius (cm) the model takes: a stretch stops where a node thins to it.
+
+    The one bound on radii lives with the configuration's bounds; this reads it.
+    """
+    return 1e-6
+
+
 def frusta_sum(radii: np.ndarray) -> float:
     """``Q(R) = sum (r_i^2 + r_i r_{i+1} + r_{i+1}^2) / 3``: the frusta volume over ``pi dx``.
 
@@ -73,6 +81,8 @@ class _VolumeLaw:
     ends: tuple[tuple[float, float], ...]  # (radius, growth) of each capped end; none if frusta
     lowest_step: float  # the step at which the first radius with growth reaches zero
     first_to_vanish: int  # the index of that node
+    thinnest_step: float  # the step at which the first radius with growth thins to the bound
+    first_to_thin: int  # the index of that node
 
     @classmethod
     def of(cls, radii: np.ndarray, growth: np.ndarray, closed: bool) -> _VolumeLaw:
@@ -84,15 +94,23 @@ class _VolumeLaw:
         b = float(np.sum(2 * r0 * m0 + r0 * m1 + r1 * m0 + 2 * r1 * m1)) / 3.0
         c = frusta_sum(radii)
         growing = growth > 0
-        limits = np.full(len(radii), -np.inf)
-        # A vanishingly small growth overflows to -inf: that node never reaches zero.
-        with np.errstate(over="ignore"):
-            limits[growing] = -radii[growing] / growth[growing]
-        first = int(np.argmax(limits))
+
+        def reaching(radius: float) -> np.ndarray:
+            # The step at which each growing node's radius is ``radius``. A vanishingly
+            # small growth overflows to -inf: that node never gets there.
+            steps = np.full(len(radii), -np.inf)
+            with np.errstate(over="ignore"):
+                steps[growing] = (radius - radii[growing]) / growth[growing]
+            return steps
+
+        # A hair above the bound, so that rounding in the solve cannot take it below.
+        limits, thinnest = reaching(0.0), reaching(thinnest_radius() * (1.0 + 1e-6))
+        first, thin = int(np.argmax(limits)), int(np.argmax(thinnest))
         # Plain floats: the solver evaluates these a few times per change, and numpy's
         # per-call overhead on two-element arrays would dominate it.
         ends = ((float(radii[0]), float(growth[0])), (float(radii[-1]), float(growth[-1])))
-        return cls(a, b, c, ends if closed else (), float(limits[first]), first)
+        return cls(a, b, c, ends if closed else (), float(limits[first]), first,
+                   min(float(thinnest[thin]), 0.0), thin)
 
     def over_pi(self, step: float, dx: float) -> float:
         return dx * ((self.a * step + self.b) * step + self.c) + self.caps(step)
@@ -131,9 +149,10 @@ class _VolumeLaw:
             excess = self.over_pi(step, dx) - target
         return step
 
-    def longest(self, target: float, segments: int) -> float:
-        """The length at which the first growing radius reaches zero (``inf`` if never)."""
-        step = self.lowest_step
+    def length_at(self, step: float, target: float, segments: int) -> float:
+        """The length at which ``step`` keeps the volume (``inf`` if none does)."""
+        if not np.isfinite(step):
+            return float("inf")
         spaced = (self.a * step + self.b) * step + self.c
         room = target - self.caps(step)
         if spaced <= 0 or room <= 0:
@@ -162,7 +181,8 @@ class _Rest:
 
     @cached_property
     def longest_length(self) -> float:
-        return self.law.longest(self.volume / np.pi, len(self.radii) - 1)
+        return self.law.length_at(self.law.thinnest_step, self.volume / np.pi,
+                                  len(self.radii) - 1)
 
 
 @dataclass(frozen=True, eq=False)
@@ -244,7 +264,8 @@ class Muscle:
 
     @property
     def longest_length(self) -> float:
-        """The length (cm) at which a radius would reach zero; ``inf`` if none ever does."""
+        """The longest this muscle can be (cm): where its first growing node thins to the
+        smallest radius the model takes; ``inf`` if none ever does."""
         return self.rest.longest_length
 
     def at_length(self, length: float) -> Muscle:
@@ -254,6 +275,8 @@ class Muscle:
             raise RefusedChange(f"length must be a positive number of cm, got {length}")
         if length == self.length:
             return self
+        if length > self.longest_length:
+            raise RefusedChange(self._too_long_message(length))
         if length == self.reference_length:  # exactly the rest shape, not a 1e-17 step off it
             return Muscle(self.rest, length, self.reference_radii, 0.0)
         dx = length / (self.node_count - 1)
@@ -272,11 +295,14 @@ class Muscle:
         return Muscle(self.rest, length, radii, step)
 
     def _too_long_message(self, length: float) -> str:
-        node = self.rest.law.first_to_vanish + 1
         return (
-            f"cannot stretch to {length:.2f} cm: node {node}'s radius would fall to zero "
-            f"at {self.longest_length:.2f} cm, the longest this muscle can be"
+            f"cannot stretch to {length:.2f} cm: {self.thinnest_note()} at "
+            f"{self.longest_length:.2f} cm, the longest this muscle can be"
         )
+
+    def thinnest_note(self) -> str:
+        """Which node stops a stretch, in words: ``node 1's radius would fall to zero``."""
+        return f"node {self.rest.law.first_to_thin + 1}'s radius would fall to zero"
 
     def with_radius(self, index: int, radius: float) -> Muscle:
         """The current shape with node ``index`` (0-based) at ``radius`` cm, as a new rest."""

@@ -10,7 +10,7 @@ from click.testing import CliRunner
 from PIL import Image
 
 from biceps.cli import main
-from biceps.engine.config import DEFAULT_CONFIG
+from biceps.engine.config import BUNDLED, DEFAULT_CONFIG
 
 
 
@@ -136,3 +136,15 @@ def test_snapshot_needs_an_output_or_ansi():
     result = run("snapshot", DEFAULT_CONFIG)
     assert result.exit_code == 2
     assert "give -o FILE.png, or one of --ansi, --kitty, --sixel and --iterm" in result.stderr
+
+
+def test_info_gives_the_range_the_muscle_itself_allows(tmp_path):
+    thin = tmp_path / "thin.toml"
+    thin.write_text((BUNDLED / "toy.toml").read_text().replace("[1.0, 0.5],\n    [2.0",
+                                                               "[0.2, 5.0],\n    [2.0", 1))
+    result = run("info", thin)
+    assert result.exit_code == 0, result.output
+    assert "(allowed 6.23 to 10.63)" in result.stdout
+    refused = run("info", thin, "--length", "11")
+    assert refused.exit_code == 2
+    assert "6.23 to 10.63 cm" in refused.stderr and "node 1's radius" in refused.stderr

@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from biceps.engine.errors import RefusedChange
-from biceps.engine.muscle import Muscle, frusta_sum, volume
+from biceps.engine.muscle import Muscle, frusta_sum, thinnest_radius, volume
 
 # SPEC section 5.
 SPEC_RADII = [0.5, 0.6, 0.8, 1.2, 1.7, 2.1, 2.35, 2.4, 2.3, 2.0, 1.6, 1.1, 0.7, 0.5, 0.45]
@@ -79,9 +79,16 @@ def test_stretching_past_zero_radius_is_refused_with_the_node_and_the_limit(spec
     assert spec_muscle.at_length(longest * 0.99).radii.min() > 0
 
 
-def test_the_classic_law_has_no_longest_length():
+def test_the_classic_law_stretches_until_its_thinnest_node_reaches_the_smallest_radius():
+    # r' = r sqrt(L0 / L) never reaches zero; r = 1 cm thins to the bound at L0 / bound^2.
     radii = np.array([1.0, 2.0, 1.0])
-    assert Muscle.of(radii, radii, 10.0, "frusta").longest_length == np.inf
+    longest = Muscle.of(radii, radii, 10.0, "frusta").longest_length
+    assert longest == pytest.approx(10.0 / thinnest_radius() ** 2, rel=1e-3)
+
+
+def test_a_stretch_stops_short_of_the_smallest_radius(spec_muscle):
+    thinnest = spec_muscle.at_length(spec_muscle.longest_length).radii.min()
+    assert thinnest_radius() <= thinnest <= thinnest_radius() * 1.001
 
 
 @pytest.mark.parametrize("length", [0.0, -3.0, np.nan, np.inf])

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from biceps.engine.arm import Arm
+from biceps.engine.config import BUNDLED, load_config
 from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import Muscle
 from biceps.engine.skeleton import Attachment, Skeleton, check_skeleton, forearm_frame
@@ -168,3 +169,32 @@ def test_a_step_within_range_has_no_note(arm):
     assert moved.length == pytest.approx(32.5)
     assert note is None
     assert moved.muscle.volume_error < 1e-12
+
+
+@pytest.fixture
+def thin_toy() -> Arm:
+    """The toy with node 1 at radius 0.2 and growth 5: stretched, it thins to nothing at
+    10.63 cm, short of the straight arm's 12 cm."""
+    toy = load_config(BUNDLED / "toy.toml").arm
+    return toy.with_muscle(toy.muscle.with_radius(0, 0.2).with_growth(0, 5.0))
+
+
+def test_the_range_ends_where_the_muscle_would_thin_to_nothing(thin_toy):
+    low, high = thin_toy.length_range()
+    assert thin_toy.skeleton.length_range()[1] == pytest.approx(12.0)
+    assert high == pytest.approx(thin_toy.muscle.longest_length)
+    assert f"{high:.2f}" == "10.63"
+
+
+def test_a_stretch_past_the_muscles_own_limit_stops_at_it_and_says_which_node(thin_toy):
+    stretched, note = thin_toy.stepped(+1.0)
+    assert stretched.length == thin_toy.muscle.longest_length
+    assert note == ("the muscle is at its longest, 10.63 cm: stretched further, node 1's "
+                    "radius would fall to zero")
+    again, note = stretched.stepped(+1.0)
+    assert again.length == stretched.length and note is not None
+
+
+def test_a_length_past_the_muscles_own_limit_is_refused_with_the_reason(thin_toy):
+    with pytest.raises(RefusedChange, match=r"6.23 to 10.63 cm .*node 1's radius would fall"):
+        thin_toy.at_length(11.0)

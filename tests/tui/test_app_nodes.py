@@ -1,15 +1,24 @@
 """Editing the muscle node by node in the table: good values take, bad ones change nothing."""
 
+import io
 from pathlib import Path
 
 import pytest
+from rich.console import Console
 from textual.widgets import Input
 
 from biceps.engine.config import load_config
 from biceps.tui.screens.prompt import Prompt
 from biceps.tui.widgets.node_table import NodeTable
+from biceps.tui.widgets.stats import Stats
 from biceps.engine.config import BUNDLED
 
+
+
+def _text(renderable) -> str:
+    console = Console(width=80, record=True, file=io.StringIO())
+    console.print(renderable)
+    return console.export_text()
 
 
 async def _edit(session, node: int, radius: str | None = None, growth: str | None = None):
@@ -145,3 +154,16 @@ async def test_clicking_a_picked_node_opens_it(biceps):
         await session.pilot.click(table, offset=(3, 3))  # under the header and the border
         await session.pilot.click(table, offset=(3, 3))
         assert isinstance(session.app.screen, Prompt)
+
+
+async def test_the_range_shown_and_a_held_stretch_stop_where_a_node_thins_to_nothing(biceps):
+    async with biceps(on=load_config(BUNDLED / "toy.toml")) as session:
+        await _edit(session, 1, radius="0.2", growth="5")
+        await session.settle()
+        assert "6.23 to 10.63" in _text(session.app.screen.query_one(Stats).content)
+        await session.pilot.press("X", "X", "X")
+        arm = session.app.scene.arm
+        assert f"{arm.length:.2f}" == "10.63"
+        assert session.warnings == [
+            "the muscle is at its longest, 10.63 cm: stretched further, node 1's radius "
+            "would fall to zero"]
