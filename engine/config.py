@@ -15,7 +15,7 @@ import re
 import tomllib
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, Callable
 
 import tomlkit
 from pydantic import AllowInfNan, BaseModel, ConfigDict, Field, Strict, ValidationError, model_validator
@@ -63,6 +63,8 @@ class MuscleTable(_Table):
     volume: VolumeMode = "closed"
     length: Positive | None = None
     flexion: Degrees | None = None
+    pose_length: Positive | None = None
+    pose_flexion: Degrees | None = None
     min_length: Positive | None = None
     max_length: Positive | None = None
     nodes: list[tuple[Positive, NonNegative]] | None = None
@@ -87,6 +89,11 @@ class MuscleTable(_Table):
             )
         if (self.length is None) == (self.flexion is None):
             raise ValueError("give exactly one of length (cm) and flexion (degrees)")
+        if self.pose_length is not None and self.pose_flexion is not None:
+            raise ValueError(
+                "give at most one of pose_length (cm) and pose_flexion (degrees): the pose "
+                "the muscle is shown in"
+            )
         return self
 
     def profile(self) -> tuple[list[float], list[float]]:
@@ -253,16 +260,7 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
     if problem is not None:
         field, reason = problem
         raise fail(("skeleton", field), reason)
-    if muscle_table.flexion is not None:
-        if not skeleton.min_flexion <= muscle_table.flexion <= skeleton.max_flexion:
-            raise fail(
-                ("muscle", "flexion"),
-                f"{muscle_table.flexion:g} degrees is outside skeleton.flexion_range, "
-                f"{skeleton.min_flexion:g} to {skeleton.max_flexion:g}",
-            )
-        length = skeleton.length_at(muscle_table.flexion)
-    else:
-        length = muscle_table.length
+    length = _length_of(muscle_table.length, muscle_table.flexion, "flexion", skeleton, fail)
     radii, growth = muscle_table.profile()
     try:
         muscle = Muscle.of(radii, growth, length, muscle_table.volume)
@@ -277,14 +275,45 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
             f"the limits leave no length: min_length, max_length and the joint's range "
             f"intersect to nothing ({low:.2f} > {high:.2f} cm)",
         )
+    _check_reach(arm, length, "flexion" if muscle_table.flexion is not None else "length", fail)
+    pose = _length_of(muscle_table.pose_length, muscle_table.pose_flexion, "pose_flexion",
+                      skeleton, fail)
+    if pose is None or pose == length:
+        return arm
+    pose = _check_reach(
+        arm, pose, "pose_flexion" if muscle_table.pose_flexion is not None else "pose_length",
+        fail,
+    )
+    return arm.at_length(pose)
+
+
+def _length_of(length: float | None, flexion: float | None, flexion_key: str,
+               skeleton: Skeleton, fail: Callable[[tuple, str], ConfigError]) -> float | None:
+    """The muscle length (cm) that ``length`` gives, or ``flexion`` (degrees) under
+    ``muscle.flexion_key``, if either."""
+    if flexion is None:
+        return length
+    if not skeleton.min_flexion <= flexion <= skeleton.max_flexion:
+        raise fail(
+            ("muscle", flexion_key),
+            f"{flexion:g} degrees is outside skeleton.flexion_range, "
+            f"{skeleton.min_flexion:g} to {skeleton.max_flexion:g}",
+        )
+    return skeleton.length_at(flexion)
+
+
+def _check_reach(arm: Arm, length: float, key: str,
+                 fail: Callable[[tuple, str], ConfigError]) -> float:
+    """``length``, which ``muscle.key`` gave, if the arm can reach it; a hair outside the
+    range (a flexion's rounding) is taken as the limit."""
+    low, high = arm.length_range()
     if not low - 1e-9 <= length <= high + 1e-9:
-        key = "flexion" if muscle_table.flexion is not None else "length"
         raise fail(
             ("muscle", key),
             f"length {length:.2f} cm is outside what the skeleton and limits allow: "
             f"{low:.2f} to {high:.2f} cm",
         )
-    return arm
+    return min(max(length, low), high)
 
 
 def _describe(path: Path, source: str, error: ValidationError, within: tuple = ()) -> str:
@@ -384,7 +413,7 @@ def save_config(config: Config, arm: Arm, view: View, light: Light, render: Rend
     target = Path(path) if path is not None else config.path
     document = tomlkit.parse(config.source)
     try:
-        _write_muscle(document, arm)
+        _write_muscle(document, arm, config.arm)
         _write_changes(target, document, "skeleton", SkeletonTable, arm.skeleton)
         _write_changes(target, document, "view", ViewTable, view)
         _write_changes(target, document, "light", LightTable, light)
@@ -397,8 +426,12 @@ def save_config(config: Config, arm: Arm, view: View, light: Light, render: Rend
     return saved
 
 
-def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm) -> None:
-    """The current shape becomes the file's rest shape, at the current length.
+def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm, before: Arm) -> None:
+    """The shape as authored and the pose apart: the nodes are the reference (rest) shape at
+    the reference length, and ``pose_length`` (or ``pose_flexion``) the length shown. A
+    contraction changes the pose alone; a node edit makes the shape at the current length
+    the new reference (SPEC 2.2), and so rewrites the nodes and the length. ``before`` is
+    the arm the document describes as it stands.
 
     Values are changed in place where the node count is the same, so the comments beside
     the nodes survive; a different count rewrites the list.
@@ -406,17 +439,29 @@ def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm) -> None:
     muscle = arm.muscle
     table = document["muscle"]
     # Plain floats print their shortest exact form, so load -> save -> load is exact.
-    radii = muscle.radii.tolist()
+    radii = muscle.reference_radii.tolist()
     growth = muscle.growth.tolist()
     if "nodes" in table:
         _update_list(table, "nodes", [[r, m] for r, m in zip(radii, growth)])
     else:
         _update_list(table, "radius", radii)
         _update_list(table, "growth", growth)
-    if "flexion" in table:
-        _update_value(table, "flexion", arm.flexion)
-    else:
-        _update_value(table, "length", muscle.length)
+    reference = muscle.reference_length
+    if reference != before.muscle.reference_length:
+        if "flexion" in table:
+            _update_value(table, "flexion", arm.skeleton.flexion(reference))
+        else:
+            _update_value(table, "length", reference)
+    if "pose_flexion" in table:
+        if muscle.length != before.length:
+            _update_value(table, "pose_flexion", arm.flexion)
+    elif "pose_length" in table:
+        _update_value(table, "pose_length", muscle.length)
+    elif muscle.length != reference:
+        pose = tomlkit.item(muscle.length)
+        pose.comment("cm as shown: the shape above, contracted or stretched at constant volume")
+        pose.trivia.comment_ws = "  "
+        table["pose_length"] = pose
     if table.get("volume", "closed") != muscle.volume_mode:
         table["volume"] = muscle.volume_mode
 

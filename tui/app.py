@@ -39,8 +39,8 @@ from biceps.tui.changes import (
     LIGHT_STEP,
     MOVE_STEP,
     TURN_STEP,
-    differs_from_saved,
     fitted,
+    has_unsaved_edits,
     length_changed,
     light_moved,
     moved,
@@ -179,7 +179,7 @@ class BicepsApp(App[None]):
         self.pacer.answered(event.x, event.y)
 
     def watch_scene(self, scene: Scene) -> None:
-        self.unsaved = differs_from_saved(scene, self._saved)
+        self.unsaved = has_unsaved_edits(scene, self._saved)
 
     def notify(
         self,
@@ -225,7 +225,8 @@ class BicepsApp(App[None]):
 
     def action_change_length(self, change: float) -> None:
         try:
-            self.scene, limit = length_changed(self.scene, change)
+            arm, limit = length_changed(self.scene.arm, change)
+            self.scene = self.scene.with_arm(arm)
         except BicepsError as error:
             self._refuse(str(error))
             return

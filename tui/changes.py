@@ -1,6 +1,6 @@
 """What the keys, the mouse and the node editor do to the model, as plain functions.
 
-Each returns a new :class:`~engine.scene.Scene` (or muscle) or raises
+Each returns a new :class:`~engine.scene.Scene` (or arm, or muscle) or raises
 :class:`~engine.errors.RefusedChange` with a sentence for the user. None touches the
 terminal, so they are tested without one.
 """
@@ -21,6 +21,10 @@ ZOOM_FACTOR = 1.1  # per key press or wheel notch
 SMALLEST_SCALE, LARGEST_SCALE = 0.1, 20.0
 FINE_STEP, COARSE_STEP = 0.1, 1.0  # cm of muscle length per contract or stretch
 _ROUNDING = 1e-12
+# What a drag is rounded to: finer than a drag of one cell moves (some degrees, some
+# millimetres), coarse enough that a saved file says yaw = 13.8, not 13.783785.
+ANGLE_PLACES = 1  # a tenth of a degree
+DISTANCE_PLACES = 2  # a tenth of a millimetre
 
 
 def turned(scene: Scene, yaw: float = 0.0, pitch: float = 0.0, roll: float = 0.0) -> Scene:
@@ -34,19 +38,20 @@ def turned(scene: Scene, yaw: float = 0.0, pitch: float = 0.0, roll: float = 0.0
 
 
 def _folded(angle: float) -> float:
-    return _tidy((angle + 180.0) % 360.0 - 180.0)
+    return _tidy((angle + 180.0) % 360.0 - 180.0, ANGLE_PLACES)
 
 
-def _tidy(value: float) -> float:
+def _tidy(value: float, places: int = 6) -> float:
     # Rounded far below what can be seen, so that the saved file says 1.21, not
     # 1.2100000000000002, and a step forth and back returns to the same number.
-    return round(value, 6)
+    return round(value, places)
 
 
 def moved(scene: Scene, right: float = 0.0, up: float = 0.0) -> Scene:
     """The model moved across the picture by ``right`` and ``up`` cm."""
     x, y, z = scene.view.offset
-    return scene.with_view(offset=(_tidy(x + right), _tidy(y + up), z))
+    return scene.with_view(
+        offset=(_tidy(x + right, DISTANCE_PLACES), _tidy(y + up, DISTANCE_PLACES), z))
 
 
 def zoomed(scene: Scene, steps: float) -> Scene:
@@ -81,13 +86,12 @@ def with_antialiasing_switched(scene: Scene) -> Scene:
     return scene.with_render(ssaa=1 if scene.render.ssaa > 1 else 2)
 
 
-def length_changed(scene: Scene, change: float) -> tuple[Scene, str | None]:
+def length_changed(arm: Arm, change: float) -> tuple[Arm, str | None]:
     """The muscle ``change`` cm longer (shorter if negative), stopping at a limit.
 
-    Returns the new scene and, when a limit stopped it, the sentence saying which.
+    Returns the new arm and, when a limit stopped it, the sentence saying which.
     """
-    arm, note = scene.arm.stepped(change)
-    return scene.with_arm(arm), note
+    return arm.towards(_tidy(arm.length + change))
 
 
 def with_node(muscle: Muscle, index: int, radius: float, growth: float) -> Muscle:
@@ -103,21 +107,24 @@ def with_node(muscle: Muscle, index: int, radius: float, growth: float) -> Muscl
     return muscle
 
 
-def differs_from_saved(scene: Scene, saved: Scene) -> bool:
-    """Whether saving ``scene`` would change the file last saved (or opened) as ``saved``."""
-    settings = (scene.view, scene.light, scene.render)
-    saved_settings = (saved.view, saved.light, saved.render)
-    return settings != saved_settings or not _same_arm(scene.arm, saved.arm)
+def has_unsaved_edits(scene: Scene, saved: Scene) -> bool:
+    """Whether the model in ``scene`` differs from the one last saved (or opened) as
+    ``saved``. The view, the light and the picture's settings are saved with it, but are
+    not edits that quitting should ask about."""
+    return not _same_arm(scene.arm, saved.arm)
 
 
 def _same_arm(a: Arm, b: Arm) -> bool:
     # By value, to a rounding error: contracting and stretching back makes a new muscle whose
     # radii, solved again from the rest shape, may differ from it in the last bit.
+    first, second = a.muscle, b.muscle
     return (
         (a.skeleton, a.min_length, a.max_length) == (b.skeleton, b.min_length, b.max_length)
-        and a.muscle.volume_mode == b.muscle.volume_mode
-        and a.muscle.node_count == b.muscle.node_count
-        and np.isclose(a.muscle.length, b.muscle.length, rtol=_ROUNDING, atol=0.0)
-        and np.allclose(a.muscle.radii, b.muscle.radii, rtol=_ROUNDING, atol=0.0)
-        and np.array_equal(a.muscle.growth, b.muscle.growth)
+        and first.volume_mode == second.volume_mode
+        and first.node_count == second.node_count
+        and np.isclose(first.length, second.length, rtol=_ROUNDING, atol=0.0)
+        and np.isclose(first.reference_length, second.reference_length, rtol=_ROUNDING,
+                       atol=0.0)
+        and np.allclose(first.reference_radii, second.reference_radii, rtol=_ROUNDING, atol=0.0)
+        and np.array_equal(first.growth, second.growth)
     )

@@ -139,7 +139,8 @@ def test_saving_keeps_the_users_comments_and_layout(user_copy):
     text = user_copy.read_text()
     assert "# A human biceps brachii on the arm skeleton of OpenSim's arm26 model." in text
     assert "upper_arm = 29.1            # humerus, the elbow's centre to the humeral head's" in text
-    assert "length = 31.0" in text
+    assert "\nlength = 33.0\n" in text  # the shape as written
+    assert "\npose_length = 31.0\n" in text  # the pose it is shown in
     assert "yaw = 40.0" in text
     assert "nodes = [\n" in text  # still one node per line
     assert "# proximal tendon" in text and "# distal tendon, on the radius" in text
@@ -217,7 +218,7 @@ INVALID_SAVES = {
                                  c.arm.skeleton, min_flexion=100.0, max_flexion=50.0))},
                              "skeleton.flexion_range: flexion range must satisfy"),
     "length below the file's min_length": (lambda c: {"arm": _limits_lifted(c)},
-                                           "muscle.length: length 28.00 cm is outside"),
+                                           "muscle.pose_length: length 28.00 cm is outside"),
 }
 
 
@@ -249,3 +250,84 @@ def test_saving_keeps_the_files_permissions(user_copy):
 def test_a_missing_file_is_a_config_error(tmp_path):
     with pytest.raises(ConfigError, match="no such file"):
         load_config(tmp_path / "nope.toml")
+
+
+def _with(path: Path, old: str, new: str) -> Path:
+    path.write_text(path.read_text().replace(old, new))
+    return path
+
+
+def test_the_pose_is_the_shape_contracted_or_stretched_at_constant_volume(user_copy):
+    config = load_config(_with(user_copy, "pose_length = 33.0", "pose_length = 31.0"))
+    muscle = config.arm.muscle
+    assert (muscle.reference_length, muscle.length) == (33.0, 31.0)
+    assert muscle.reference_radii[7] == 2.08  # the shape as written
+    assert np.array_equal(muscle.radii, muscle.at_length(33.0).at_length(31.0).radii)
+
+
+def test_a_pose_may_be_a_flexion(user_copy):
+    config = load_config(_with(user_copy, "pose_length = 33.0", "pose_flexion = 90.0"))
+    assert config.arm.flexion == pytest.approx(90.0)
+    assert config.arm.muscle.reference_length == 33.0
+
+
+@pytest.mark.parametrize(("pose", "message"), [
+    ("pose_length = 50.0", ":19: muscle.pose_length: length 50.00 cm is outside"),
+    ("pose_flexion = 150.0", ":19: muscle.pose_flexion: 150 degrees is outside"),
+    ("pose_length = 31.0\npose_flexion = 90.0", "give at most one of pose_length (cm) and"),
+])
+def test_a_pose_the_arm_cannot_take_is_refused_where_it_is_written(user_copy, pose, message):
+    with pytest.raises(ConfigError) as refusal:
+        load_config(_with(user_copy, "pose_length = 33.0", pose))
+    assert message in str(refusal.value)
+
+
+def test_a_file_without_a_pose_shows_the_shape_as_written(user_copy):
+    config = load_config(_with(user_copy, "pose_length = 33.0", ""))
+    assert config.arm.length == config.arm.muscle.reference_length == 33.0
+
+
+def test_saving_a_contraction_changes_the_pose_alone(user_copy):
+    before = user_copy.read_text().splitlines()
+    config = load_config(user_copy)
+    _save(config, config.arm.at_length(31.0))
+    after = user_copy.read_text().splitlines()
+    assert [(a, b) for a, b in zip(before, after) if a != b] == [
+        ("pose_length = 33.0", "pose_length = 31.0")]
+    assert len(after) == len(before)
+
+
+def test_saving_a_contraction_into_a_file_without_a_pose_adds_one_line(tmp_path):
+    path = tmp_path / "toy.toml"
+    path.write_text((BUNDLED / "toy.toml").read_text())
+    before = path.read_text().splitlines()
+    config = load_config(path)
+    _save(config, config.arm.at_length(9.0))
+    after = path.read_text().splitlines()
+    added = [line for line in after if line not in before]
+    assert len(after) == len(before) + 1
+    assert added == ["pose_length = 9.0  # cm as shown: the shape above, contracted or "
+                     "stretched at constant volume"]
+    assert load_config(path).arm.length == 9.0
+
+
+def test_a_node_edit_in_a_pose_saves_that_pose_as_the_new_shape(user_copy):
+    config = load_config(user_copy)
+    contracted = config.arm.at_length(31.0)
+    edited = contracted.with_muscle(contracted.muscle.with_radius(7, 2.5))
+    _save(config, edited)
+    text = user_copy.read_text()
+    assert "\nlength = 31.0\n" in text and "\npose_length = 31.0\n" in text
+    again = load_config(user_copy).arm.muscle
+    assert np.array_equal(again.radii, edited.muscle.radii)
+    assert again.reference_length == 31.0
+
+
+def test_a_shape_given_by_flexion_keeps_its_flexion_through_a_contraction(tmp_path):
+    path = tmp_path / "flexed.toml"
+    path.write_text("[muscle]\nflexion = 63.0\nnodes = [[0.5, 0.0], [2.0, 1.0], [0.5, 0.0]]\n")
+    config = load_config(path)
+    _save(config, config.arm.at_flexion(90.0))
+    text = path.read_text()
+    assert "\nflexion = 63.0\n" in text
+    assert load_config(path).arm.flexion == pytest.approx(90.0)

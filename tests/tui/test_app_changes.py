@@ -8,7 +8,8 @@ from biceps.engine.scene import Scene
 from biceps.tui.changes import (
     LARGEST_SCALE,
     SMALLEST_SCALE,
-    differs_from_saved,
+    has_unsaved_edits,
+    moved,
     length_changed,
     turned,
     with_antialiasing_switched,
@@ -48,14 +49,32 @@ def test_anti_aliasing_switches_off_from_any_level(scene):
 
 
 def test_contracting_then_stretching_back_leaves_nothing_to_save(scene):
-    shorter, _ = length_changed(scene, -1.0)
-    assert differs_from_saved(shorter, scene)
-    back, _ = length_changed(shorter, 1.0)
-    assert not differs_from_saved(back, scene)
+    shorter = scene.with_arm(length_changed(scene.arm, -1.0)[0])
+    assert has_unsaved_edits(shorter, scene)
+    back = scene.with_arm(length_changed(shorter.arm, 1.0)[0])
+    assert not has_unsaved_edits(back, scene)
 
 
-def test_moving_the_light_is_something_to_save(scene):
-    assert differs_from_saved(scene.with_light(position=(0.0, 0.0, 1.0)), scene)
+def test_small_steps_forth_and_back_come_back_to_the_same_length(scene):
+    arm = scene.arm
+    for change in [-0.1] * 7 + [0.1] * 7:
+        arm, _ = length_changed(arm, change)
+        assert arm.length == round(arm.length, 6)
+    assert arm.length == 33.0
+
+
+@pytest.mark.parametrize("change", [
+    lambda s: s.with_light(position=(0.0, 0.0, 1.0)),
+    lambda s: turned(s, yaw=13.783785),
+    lambda s: with_antialiasing_switched(s),
+])
+def test_the_view_the_light_and_the_settings_are_not_model_edits(scene, change):
+    assert not has_unsaved_edits(change(scene), scene)
+
+
+def test_a_drag_turns_and_moves_to_round_numbers(scene):
+    assert turned(scene, yaw=13.783785, pitch=-0.04).view.yaw == -11.2
+    assert moved(scene, right=1.23456).view.offset == (1.23, 0.0, 0.0)
 
 
 def test_an_untouched_node_edit_keeps_the_muscle(scene):

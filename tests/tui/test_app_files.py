@@ -1,5 +1,8 @@
 """Saving, opening, exporting and quitting: no edit is ever lost, every failure is said."""
 
+import difflib
+import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -203,3 +206,39 @@ async def test_ctrl_q_asks_even_from_inside_a_dialog(biceps):
         await session.pilot.press("ctrl+q")  # asking twice does not stack questions
         await session.pilot.press("escape")
         assert isinstance(session.app.screen, Prompt)
+
+
+async def test_saving_after_contracting_changes_the_pose_line_alone(biceps, config_path):
+    before = config_path.read_text().splitlines()
+    async with biceps() as session:
+        await session.pilot.press("C", "C", "ctrl+s")
+        assert not session.app.unsaved
+    after = config_path.read_text().splitlines()
+    changed = [line for line in difflib.unified_diff(before, after, lineterm="", n=0)
+               if line[:1] in "+-" and line[:3] not in ("+++", "---")]
+    assert changed == ["-pose_length = 33.0", "+pose_length = 31.0"]
+    # The comments beside the nodes still say what the nodes are.
+    belly = next(line for line in after if "# the belly" in line)
+    radius = float(re.match(r"\s*\[([\d.]+),", belly)[1])
+    area = re.search(r"about ([\d.]+) cm\^2", belly)[1]
+    assert f"{math.pi * radius**2:.1f}" == area
+
+
+async def test_turning_and_shading_are_saved_but_quitting_does_not_ask_about_them(
+    biceps, config_path
+):
+    async with biceps() as session:
+        await session.pilot.press("right", "g", "l", "plus")
+        assert not session.app.unsaved
+        await session.pilot.press("ctrl+s")
+        await session.pilot.press("left", "q")
+        assert session.app.return_code == 0  # quit at once, no question
+    saved = load_config(config_path)
+    assert (saved.view.yaw, saved.render.shading) == (-20.0, "phong")
+
+
+async def test_a_drag_saves_a_round_angle(biceps, config_path):
+    async with biceps() as session:
+        session.app.action_turn(13.783785, 0.0, 0.0)
+        await session.pilot.press("ctrl+s")
+    assert "\nyaw = -11.2 " in config_path.read_text()
