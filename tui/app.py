@@ -26,8 +26,9 @@ from textual.notifications import SeverityLevel
 from textual.reactive import var
 from textual.screen import Screen
 
-from biceps.engine import coldstart
 from biceps.configs import FOLDER as BUNDLED_MODELS
+from biceps.engine import coldstart
+from biceps.engine.arm import Arm
 from biceps.engine.config import Config, load_config, save_config
 from biceps.engine.errors import BicepsError
 from biceps.engine.export import check_writable, parse_size, write_png
@@ -51,6 +52,7 @@ from biceps.tui.changes import (
 )
 from biceps.tui.commands import KeyCommands
 from biceps.tui.encoder import PictureEncoder
+from biceps.tui.history import History, Step
 from biceps.tui.pacing import Pacer, cursor_question
 from biceps.tui.parse import parse_path
 from biceps.tui.pixels import encoder_for
@@ -107,6 +109,9 @@ class BicepsApp(App[None]):
         Binding("r", "reset_view", "Reset the view", show=False),
         Binding("g", "switch_shading", "Shading: Gouraud or Phong", show=False),
         Binding("m", "switch_antialiasing", "Anti-aliasing on or off", show=False),
+        Binding("ctrl+z", "undo", "Undo", show=False),
+        Binding("ctrl+y", "redo", "Redo", show=False),
+        Binding("ctrl+r", "revert", "Revert to the saved file", show=False),
         Binding("e", "export", "Export"),
         Binding("p", "toggle_plots", "Plots on or off", show=False),
         Binding("v", "record", "Record the flex cycle", show=False),
@@ -131,6 +136,7 @@ class BicepsApp(App[None]):
         self.pacer = Pacer(self._ask_cursor_position, self.set_timer, fps)
         self._encoder = encoder
         self._notice = notice
+        self._history = History()
         self._adopt(config, Scene.of(config))
         self.set_reactive(BicepsApp.scene, self._saved)
         self._export_path = f"{config.path.stem}.png"
@@ -211,6 +217,15 @@ class BicepsApp(App[None]):
         except BicepsError as error:
             self._refuse(str(error))
 
+    def _edit(self, arm: Arm, what: str, *, run: bool = False) -> None:
+        """Put ``arm`` in the scene as an edit that undo can take back; ``run`` for a length
+        change, which joins the length changes just before it (see tui/history.py)."""
+        before = self.scene.arm
+        if arm is before:
+            return
+        self._history.record(before, what, run=run, at=monotonic())
+        self.scene = self.scene.with_arm(arm)
+
     def action_turn(self, yaw: float, pitch: float, roll: float) -> None:
         self._change(partial(turned, yaw=yaw, pitch=pitch, roll=roll))
 
@@ -226,12 +241,35 @@ class BicepsApp(App[None]):
     def action_change_length(self, change: float) -> None:
         try:
             arm, limit = length_changed(self.scene.arm, change)
-            self.scene = self.scene.with_arm(arm)
         except BicepsError as error:
             self._refuse(str(error))
             return
+        self._edit(arm, "the length change", run=True)
         if limit is not None:
             self._refuse(limit)
+
+    def action_undo(self) -> None:
+        self._go_through_history(self._history.undo, "undo", "Undone")
+
+    def action_redo(self) -> None:
+        self._go_through_history(self._history.redo, "redo", "Redone")
+
+    def _go_through_history(self, move: Callable[[Arm], Step | None], verb: str,
+                            done: str) -> None:
+        step = move(self.scene.arm)
+        if step is None:
+            self.notify(f"Nothing to {verb}", markup=False)
+            return
+        self.scene = self.scene.with_arm(step.arm)
+        self.notify(f"{done}: {step.what}", markup=False)
+
+    def action_revert(self) -> None:
+        name = self.config.path.name
+        if not self.unsaved:
+            self.notify(f"Nothing to revert: the model is as {name} has it", markup=False)
+            return
+        self._edit(self._saved.arm, f"the revert to {name}")
+        self.notify(f"Back to {name} as saved; ctrl+z brings the edits back", markup=False)
 
     def action_move_light(self, x: float, y: float, z: float) -> None:
         self._change(partial(light_moved, x=x, y=y, z=z))
@@ -259,9 +297,15 @@ class BicepsApp(App[None]):
 
     @on(NodeTable.ChangeRequested)
     def _edit_muscle(self, message: NodeTable.ChangeRequested) -> None:
-        self._change(
-            lambda scene: scene.with_arm(scene.arm.with_muscle(message.change(scene.arm.muscle)))
-        )
+        arm = self.scene.arm
+        try:
+            edited = arm.with_muscle(message.change(arm.muscle))
+        except BicepsError as error:
+            self._refuse(str(error))
+            return
+        self._edit(edited, message.what)
+        if message.undoable_note:
+            self.notify(f"{message.what.capitalize()}; ctrl+z undoes it", markup=False)
 
     def action_help(self) -> None:
         if not isinstance(self.screen, HelpScreen):
@@ -332,6 +376,7 @@ class BicepsApp(App[None]):
         if self.unsaved and not await self._unsaved_edits_settled("open"):
             return
         self._adopt(config, Scene.of(config))
+        self._history.clear()
         self.scene = self._saved
         self._export_path = f"{config.path.stem}.png"
 

@@ -27,11 +27,16 @@ class NodeTable(DataTable):
     ]
 
     class ChangeRequested(Message):
-        """The user asked for ``change`` to be made to the muscle."""
+        """The user asked for ``change`` to be made to the muscle; ``what`` says it in words
+        (``node 8 deleted``); ``undoable_note``: say that undo takes it back, for an edit
+        that removes what a person typed."""
 
-        def __init__(self, change: Callable[[Muscle], Muscle]) -> None:
+        def __init__(self, change: Callable[[Muscle], Muscle], what: str,
+                     undoable_note: bool = False) -> None:
             super().__init__()
             self.change = change
+            self.what = what
+            self.undoable_note = undoable_note
 
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id, cursor_type="row", zebra_stripes=True)
@@ -84,7 +89,8 @@ class NodeTable(DataTable):
         def request(values: tuple[float, float] | None) -> None:
             if values is not None:
                 radius, growth = values
-                self._request(lambda current: with_node(current, index, radius, growth))
+                self._request(lambda current: with_node(current, index, radius, growth),
+                              f"node {index + 1} edited")
 
         fields = [
             _number_field("Radius (cm, above 0)", muscle.radii[index]),
@@ -94,17 +100,20 @@ class NodeTable(DataTable):
 
     def action_insert_node(self) -> None:
         index = self.cursor_row
-        self._request(lambda current: current.with_node_inserted(index))
+        self._request(lambda current: current.with_node_inserted(index),
+                      f"a node inserted after node {index + 1}")
 
     def action_delete_node(self) -> None:
         index = self.cursor_row
-        self._request(lambda current: current.without_node(index))
+        self._request(lambda current: current.without_node(index), f"node {index + 1} deleted",
+                      undoable_note=True)
 
     def action_subdivide(self) -> None:
-        self._request(Muscle.subdivided)
+        self._request(Muscle.subdivided, "every segment subdivided")
 
-    def _request(self, change: Callable[[Muscle], Muscle]) -> None:
-        self.post_message(self.ChangeRequested(change))
+    def _request(self, change: Callable[[Muscle], Muscle], what: str,
+                 undoable_note: bool = False) -> None:
+        self.post_message(self.ChangeRequested(change, what, undoable_note))
 
 
 def _number_field(label: str, value: float) -> Field[float]:
