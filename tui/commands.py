@@ -19,7 +19,7 @@ from biceps.tui.widgets.node_table import NodeTable
 class KeyCommands(Provider):
     def _commands(self) -> Iterator[tuple[str, str, partial]]:
         app = self.app
-        owners: list[DOMNode] = [app, *self.screen.query(NodeTable)]
+        owners: list[DOMNode] = [app, self.screen, *self.screen.query(NodeTable)]
         for owner in owners:
             keys: dict[str, list[str]] = {}
             descriptions: dict[str, str] = {}

@@ -67,7 +67,8 @@ async def test_help_opens_and_closes(biceps, key):
 
 
 def _bindings() -> list[Binding]:
-    return [*Binding.make_bindings(BicepsApp.BINDINGS), *Binding.make_bindings(NodeTable.BINDINGS)]
+    return [*Binding.make_bindings(BicepsApp.BINDINGS), *Binding.make_bindings(MainScreen.BINDINGS),
+            *Binding.make_bindings(NodeTable.BINDINGS)]
 
 
 # How help.md writes the keys whose Textual names are words.
@@ -106,3 +107,34 @@ async def test_a_command_from_the_palette_runs(biceps):
         await session.pilot.press("enter")
         await session.settle()
         assert session.app.scene.arm.length == pytest.approx(34.0)
+
+
+async def test_the_side_panel_folds_away_in_a_narrow_terminal_and_h_brings_it_back(biceps):
+    async with biceps(size=(80, 24)) as session:
+        screen = session.app.screen
+        side, viewport = screen.query_one("#side"), screen.query_one(Viewport)
+        assert not side.display
+        assert viewport.outer_size.width == 80  # the picture takes the room
+        await session.pilot.press("h")
+        assert side.display
+        assert viewport.outer_size.width == 80 - side.outer_size.width
+        await session.pilot.resize_terminal(60, 20)
+        await session.pilot.pause()
+        assert side.display  # asked for, so it stays
+
+
+async def test_a_wide_terminal_shows_the_panel_and_h_hides_it(biceps):
+    async with biceps(size=(120, 30)) as session:
+        screen = session.app.screen
+        side, viewport = screen.query_one("#side"), screen.query_one(Viewport)
+        assert side.display and viewport.outer_size.width == 120 - 32
+        await session.pilot.press("tab")
+        assert session.app.focused.id == "nodes"
+        await session.pilot.press("h")
+        await session.pilot.pause()
+        assert not side.display and viewport.outer_size.width == 120
+        assert session.app.focused is viewport
+        await session.settle()
+        assert viewport.render_line(0).cell_length == viewport.size.width
+        await session.pilot.press("h")
+        assert side.display

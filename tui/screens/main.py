@@ -1,9 +1,14 @@
 """The main screen: the picture, and beside it the numbers and the node table; below, when
-asked for, the plots, and while one is written, a recording's progress."""
+asked for, the plots, and while one is written, a recording's progress.
+
+The side panel folds away by itself in a narrow terminal, so that the picture keeps the
+room (as lazygit and btop fold their panels), and a key hides or shows it at any width.
+"""
 
 from __future__ import annotations
 
 from textual.app import ComposeResult
+from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
 from textual.events import Resize, ScreenSuspend
 from textual.screen import Screen
@@ -23,9 +28,14 @@ from biceps.tui.widgets.viewport import Viewport
 # Below this the side panel leaves the picture a sliver and the table a few rows.
 SMALLEST_USEFUL = (60, 16)
 
+NARROW = 100
+"""Columns below which the side panel is hidden unless asked for: its 32 columns would
+take a third of the picture's width or more."""
+
 
 class MainScreen(Screen[None]):
     AUTO_FOCUS = "#viewport"
+    BINDINGS = [Binding("h", "toggle_panel", "Hide or show the side panel", show=False)]
 
     def __init__(self, pacer: Pacer, encoder: PictureEncoder | None = None) -> None:
         """``encoder``: how the picture reaches the terminal (default: half-blocks)."""
@@ -35,6 +45,7 @@ class MainScreen(Screen[None]):
         self._arm: Arm | None = None
         # Real pixels are painted over the cells: notifications keep to the side panel.
         self.set_class(isinstance(encoder, ImageEncoder), "-pixels")
+        self._panel_wanted: bool | None = None  # None: as the width has it
 
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
@@ -63,6 +74,24 @@ class MainScreen(Screen[None]):
     def on_resize(self, event: Resize) -> None:
         width, height = event.size
         self.set_class(width < SMALLEST_USEFUL[0] or height < SMALLEST_USEFUL[1], "-too-small")
+        self._place_panel()
+
+    @property
+    def panel_shown(self) -> bool:
+        return not self.has_class("-panel-hidden")
+
+    def action_toggle_panel(self) -> None:
+        self._panel_wanted = not self.panel_shown
+        self._place_panel()
+
+    def _place_panel(self) -> None:
+        wanted = self._panel_wanted
+        shown = self.size.width >= NARROW if wanted is None else wanted
+        if not shown and self.focused is not None and self.query_one("#side") in (
+            self.focused.ancestors
+        ):
+            self.query_one(Viewport).focus()  # the keys keep working on what is seen
+        self.set_class(not shown, "-panel-hidden")
 
     def _show_scene(self, scene: Scene) -> None:
         self.query_one(Viewport).show(scene)
