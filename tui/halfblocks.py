@@ -9,11 +9,14 @@ are merged into one segment, so a flat background costs one segment per line.
 Kernels pack each cell's two pixels into one number, find the rows that differ from the
 last frame and the runs of equal cells in them; Python only turns runs into segments, with
 one cached :class:`~rich.style.Style` per cell colour. Textual writes the colour codes
-itself, so it still downgrades them for a 256-colour terminal, and composes the lines with
-whatever is drawn over the picture.
+itself and composes the lines with whatever is drawn over the picture. For a 256-colour
+terminal the frames come already mapped onto the palette (``tui/palette.py``), and each
+colour is written as its palette entry.
 """
 
 from __future__ import annotations
+
+from typing import Callable
 
 import numpy as np
 from rich.color import Color
@@ -79,19 +82,24 @@ def find_runs(cells, changed, starts, counts):
 
 
 class _Styles(dict):
-    """One style per cell colour, made on first use."""
+    """One style per cell colour, made on first use; ``colour`` makes a pixel's colour."""
+
+    def __init__(self, colour: Callable[[int], Color]) -> None:
+        super().__init__()
+        self._colour = colour
 
     def __missing__(self, cell: int) -> Style:
         top, bottom = cell >> 24, cell & BOTTOM
         if top == bottom:
-            style = Style(bgcolor=_colour(bottom))
+            style = Style(bgcolor=self._colour(bottom))
         else:
-            style = Style(color=_colour(top), bgcolor=_colour(bottom))
+            style = Style(color=self._colour(top), bgcolor=self._colour(bottom))
         self[cell] = style
         return style
 
 
-def _colour(rgb: int) -> Color:
+def rgb_colour(rgb: int) -> Color:
+    """The colour ``r << 16 | g << 8 | b``, in 24 bits."""
     return Color.from_rgb(rgb >> 16, (rgb >> 8) & 0xFF, rgb & 0xFF)
 
 
@@ -112,13 +120,14 @@ class HalfBlocks:
     # Enough for every colour of a few frames; a turning model keeps making new ones.
     MAX_STYLES = 1 << 17
 
-    def __init__(self) -> None:
+    def __init__(self, colour: Callable[[int], Color] = rgb_colour) -> None:
+        """``colour``: how a pixel's colour, ``r << 16 | g << 8 | b``, is written."""
         self._cells = np.zeros((0, 0), np.int64)
         self._previous = np.zeros((0, 0), np.int64)
         self._starts = np.zeros((0, 0), np.int32)  # find_runs' output, kept for the size
         self._counts = np.zeros(0, np.int32)
         self._strips: list[Strip] = []
-        self._styles = _Styles()
+        self._styles = _Styles(colour)
 
     def encode(self, frame: np.ndarray) -> Picture:
         """The lines of ``frame`` ((2 h, w, 3) uint8): h lines of w cells."""

@@ -32,6 +32,9 @@ def test_a_256_colour_terminal_gets_palette_codes_only(config_path):
     codes = _colour_codes(_first_picture(config_path, "--colors", "256"))
     assert any("48;5;" in code for code in codes)
     assert not any(re.search(r"(^|;)[34]8;2;", code) for code in codes)
+    # The picture's background, #12161c, in its nearest entry, #121212, not pure black.
+    backgrounds = [int(number) for code in codes for number in re.findall(r"48;5;(\d+)", code)]
+    assert 233 in backgrounds and 16 not in backgrounds
 
 
 def test_a_truecolor_terminal_gets_the_picture_in_rgb(config_path):

@@ -38,9 +38,11 @@ from textual.widget import Widget
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer
 from biceps.tui.encoder import Picture, PictureEncoder
-from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.halfblocks import HalfBlocks, rgb_colour
 from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer
+from biceps.tui.palette import Palette256, background_colour
+from biceps.tui.palette import colour as palette_colour
 
 
 DRAW_TRIES = 8  # refreshes to wait for a frame to be written before pacing on regardless
@@ -98,7 +100,11 @@ class Viewport(Widget, can_focus=True):
         terminal (default: :class:`HalfBlocks`), from the render thread."""
         super().__init__(id=id)
         self._pacer = pacer
-        self._encoder = HalfBlocks() if encoder is None else encoder
+        # A 256-colour terminal gets every frame mapped onto its palette as a whole
+        # (tui/palette.py); left to Textual, each colour would be mapped on its own.
+        self._palette = Palette256() if self.app.console.color_system == "256" else None
+        colours = rgb_colour if self._palette is None else palette_colour
+        self._encoder = HalfBlocks(colours) if encoder is None else encoder
         self._scene: Scene | None = None
         self._requests: LatestOnly[_Request] = LatestOnly()
         self._requested = 0  # the number of the newest request
@@ -119,7 +125,9 @@ class Viewport(Widget, can_focus=True):
 
     def show(self, scene: Scene) -> None:
         self._scene = scene
-        self._background = Style(bgcolor=Color.from_rgb(*rgb(scene.render.background)))
+        background = rgb(scene.render.background)
+        self._background = Style(bgcolor=Color.from_rgb(*background) if self._palette is None
+                                 else background_colour(background))
         self._request_frame()
 
     def on_mount(self) -> None:
@@ -176,6 +184,8 @@ class Viewport(Widget, can_focus=True):
         while (request := self._requests.take()) is not None:
             try:
                 frame = renderer.render(request.scene, request.width, request.height)
+                if self._palette is not None:
+                    frame = self._palette.mapped(frame, rgb(request.scene.render.background))
                 picture = encoder.encode(frame)
                 message = self.FrameRendered(request.number, request.scene, picture)
             except Exception as error:
