@@ -264,9 +264,11 @@ def describe(arm: Arm) -> dict[str, Any]:
     }
 
 
-def _parse_size(_ctx: Any, _param: Any, value: str) -> tuple[int, int]:
+def _parse_size(_ctx: Any, _param: Any, value: str | None) -> tuple[int, int] | None:
     from biceps.engine.export import parse_size
 
+    if value is None:
+        return None
     try:
         return parse_size(value)
     except ValueError as error:
@@ -318,32 +320,43 @@ def posed_scene(config_path: Path, length: float | None, flexion: float | None,
     return scene
 
 
+PNG_SIZE = (1920, 1080)
+
+
 @main.command()
 @config_argument
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
               help="The PNG file to write.")
-@click.option("--size", default="1920x1080", show_default=True, callback=_parse_size,
-              metavar="WxH", help="Picture size in pixels.")
+@click.option("--size", callback=_parse_size, metavar="WxH",
+              help=f"Picture size in pixels (default {PNG_SIZE[0]}x{PNG_SIZE[1]}; printed, the "
+              "terminal's width).")
 @click.option("--ansi", "printed", flag_value="ansi",
-              help="Print the picture to this terminal as half-block pixels instead.")
+              help="Print the picture as half-block pixels instead, in colour even into a pipe.")
 @click.option("--kitty", "printed", flag_value="kitty",
               help="Print it in the kitty graphics protocol.")
 @click.option("--sixel", "printed", flag_value="sixel", help="Print it as sixel.")
 @click.option("--iterm", "printed", flag_value="iterm", help="Print it as an iTerm2 image.")
+@click.option("--colors", type=click.Choice(["auto", "truecolor", "256"]), default="auto",
+              show_default=True,
+              help="With --ansi: the colour codes; auto asks the environment (COLORTERM, TERM).")
 @pose_options
 @view_options
 @_refusals_exit_2
-def snapshot(config: Path, output: Path | None, size: tuple[int, int], printed: str | None,
-             length: float | None, flexion: float | None, **overrides: Any) -> None:
+def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
+             printed: str | None, colors: str, length: float | None, flexion: float | None,
+             **overrides: Any) -> None:
     """Render CONFIG to a PNG file, with no terminal needed, or print it to this one.
 
     --kitty, --sixel and --iterm print a picture as wide as the terminal in its own pixels
-    (as --ansi does in half-blocks), in that protocol.
+    (as --ansi does in half-blocks), in that protocol, unless --size says otherwise.
     """
     from biceps.engine.export import check_writable, write_png
     from biceps.engine.scene import SceneRenderer
 
-    if (printed is None) == (output is None):
+    if printed is not None and output is not None:
+        raise click.UsageError(f"give -o FILE.png or --{printed}, not both: a picture goes "
+                               "to one place")
+    if printed is None and output is None:
         raise click.UsageError("give -o FILE.png, or one of --ansi, --kitty, --sixel and "
                                "--iterm to print to the terminal")
     if output is not None:
@@ -354,15 +367,19 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int], printed: 
 
         prepare_kernels(scene.render.shading, scene.render.ssaa)  # forks: see coldstart
     if printed == "ansi":
+        from biceps.engine.config import rgb
         from biceps.tui.ansi import print_picture  # rich, only for this mode
 
-        print_picture(lambda width, height: SceneRenderer().render(scene, width, height))
+        print_picture(lambda width, height: SceneRenderer().render(scene, width, height),
+                      rgb(scene.render.background), size, colors)
         return
     if printed is not None:
         from biceps.tui.printed import print_image
 
-        print_image(printed, lambda width, height: SceneRenderer().render(scene, width, height))
+        print_image(printed, lambda width, height: SceneRenderer().render(scene, width, height),
+                    size)
         return
+    size = size or PNG_SIZE
     try:
         frame = SceneRenderer().render(scene, *size)
     except MemoryError:

@@ -31,14 +31,20 @@ def image(protocol: str, frame: np.ndarray, columns: int, rows: int, colours: in
     return iterm.inline_image(iterm.png(frame), columns, rows)
 
 
-def print_image(protocol: str, render: Callable[[int, int], np.ndarray]) -> None:
-    """Render a picture across the terminal and print it in ``protocol``."""
+def print_image(protocol: str, render: Callable[[int, int], np.ndarray],
+                size: tuple[int, int] | None = None) -> None:
+    """Render a picture across the terminal, or of ``size`` pixels, and print it in
+    ``protocol``."""
     answers = detect.ask() if sys.stdout.isatty() else None
     choice = detect.choose(protocol, answers, detect.Place())
     (cell_width, cell_height), colours = choice.cell, choice.colours
-    columns = max(shutil.get_terminal_size().columns, 8)
-    rows = max(round(columns * cell_width * 9 / 16 / cell_height), 1)
-    frame = render(columns * cell_width, rows * cell_height)
+    if size is None:
+        columns = max(shutil.get_terminal_size().columns, 8)
+        rows = max(round(columns * cell_width * 9 / 16 / cell_height), 1)
+        size = columns * cell_width, rows * cell_height
+    else:  # the cells it covers, the last ones maybe in part
+        columns, rows = -(-size[0] // cell_width), -(-size[1] // cell_height)
+    frame = render(*size)
     sys.stdout.write("\n" * rows + f"\x1b[{rows}A\x1b7"
                      + image(protocol, frame, columns, rows, colours) + "\x1b8"
                      + f"\x1b[{rows}B\r")

@@ -1,6 +1,7 @@
 """The headless commands: info, snapshot and export-mesh, as a script would use them."""
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -122,20 +123,52 @@ def test_export_mesh_refuses_an_unknown_format(tmp_path):
     assert ".obj, .stl, .ply, .glb" in result.stderr
 
 
+def _cells(ansi: str) -> list[str]:
+    """The lines of ``ansi`` without their colour codes."""
+    return re.sub(r"\x1b\[[0-9;]*m", "", ansi).splitlines()
+
+
 def test_snapshot_ansi_prints_half_block_pixels_across_the_terminal(monkeypatch):
     monkeypatch.setenv("COLUMNS", "60")
     result = run("snapshot", DEFAULT_CONFIG, "--ansi", "--flexion", "90")
     assert result.exit_code == 0, result.output
-    lines = result.stdout.splitlines()
+    lines = _cells(result.stdout)
     assert len(lines) == round(60 * 9 / 16 / 2)  # two pixel rows per line, 16:9
     assert all(len(line) == 60 for line in lines)
     assert set("".join(lines)) <= {"▄", "▀", " "}
+
+
+@pytest.mark.parametrize(("colors", "code"), [("truecolor", "48;2;18;22;28"),
+                                              ("256", "48;5;233")])
+def test_snapshot_ansi_into_a_pipe_is_in_colour(colors, code, monkeypatch):
+    monkeypatch.delenv("COLORTERM", raising=False)
+    result = run("snapshot", DEFAULT_CONFIG, "--ansi", "--size", "32x18", "--colors", colors)
+    assert result.exit_code == 0, result.output
+    codes = re.findall(r"\x1b\[([0-9;]*)m", result.stdout)
+    assert code in " ".join(codes)  # the background, in its own colour
+    other = "38;2;" if colors == "256" else "38;5;"
+    assert not any(other in found for found in codes)
+
+
+def test_snapshot_ansi_takes_the_asked_size():
+    result = run("snapshot", DEFAULT_CONFIG, "--ansi", "--size", "100x31")
+    assert result.exit_code == 0, result.output
+    lines = _cells(result.stdout)
+    assert len(lines) == 16  # 31 pixel rows, in whole cells of two
+    assert all(len(line) == 100 for line in lines)  # wider than the 80 a pipe is given
 
 
 def test_snapshot_needs_an_output_or_ansi():
     result = run("snapshot", DEFAULT_CONFIG)
     assert result.exit_code == 2
     assert "give -o FILE.png, or one of --ansi, --kitty, --sixel and --iterm" in result.stderr
+
+
+def test_snapshot_with_an_output_and_ansi_says_both_were_given(tmp_path):
+    result = run("snapshot", DEFAULT_CONFIG, "--ansi", "-o", tmp_path / "x.png")
+    assert result.exit_code == 2
+    assert "give -o FILE.png or --ansi, not both" in result.stderr
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_info_gives_the_range_the_muscle_itself_allows(tmp_path):
