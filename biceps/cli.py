@@ -13,6 +13,7 @@ written) ends the process with exit code 2 and one clear message on stderr.
 from __future__ import annotations
 
 import csv
+import difflib
 import functools
 import gc
 import io
@@ -60,12 +61,40 @@ GRAPHICS = list(get_args(Graphics))
 
 
 class _AppByDefault(click.Group):
-    """A group whose bare invocation, or one naming a config, runs the ``app`` command."""
+    """A group whose bare invocation, or one naming a config, runs the ``app`` command.
+
+    A first word that is neither a command nor a file that could be a config is taken for
+    a mistyped command: ``biceps snaphsot -o x.png`` asks "did you mean 'snapshot'?"
+    rather than opening the app on a file named snaphsot.
+    """
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
-        if not args or (args[0] not in self.commands and args[0] not in ("--help", "-h")):
+        first = args[0] if args else None
+        if first is None or (first not in self.commands and first not in OWN_OPTIONS):
+            if first is not None and not first.startswith("-") and _not_a_config(first):
+                self._no_such_command(ctx, first)
             args = ["app", *args]
         return super().parse_args(ctx, args)
+
+    def collect_usage_pieces(self, ctx: click.Context) -> list[str]:
+        return ["[OPTIONS]", "[CONFIG | COMMAND [ARGS]...]"]
+
+    def _no_such_command(self, ctx: click.Context, word: str) -> None:
+        commands = sorted(self.commands)
+        close = difflib.get_close_matches(word, commands, n=1)
+        hint = f" Did you mean {close[0]!r}?" if close else ""
+        raise click.UsageError(
+            f"No such command or file {word!r}.{hint} Commands: {', '.join(commands)}; or "
+            "give a configuration file (.toml) to open the app on it.", ctx)
+
+
+OWN_OPTIONS = ("--help", "-h", "--version")
+
+
+def _not_a_config(word: str) -> bool:
+    """Whether ``word`` cannot be meant as a configuration file: no such file or folder,
+    and not a name ending in .toml (whose absence the app's own message explains)."""
+    return not word.lower().endswith(".toml") and not Path(word).exists()
 
 
 def _refusals_exit_2(command: Callable) -> Callable:
@@ -109,14 +138,16 @@ def posed(arm: Arm, length: float | None, flexion: float | None) -> Arm:
 
 
 @click.group(cls=_AppByDefault, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="biceps", prog_name="biceps")
 def main() -> None:
     """A shaded 3D biceps that contracts and stretches at exactly constant volume.
 
-    Run with no command (or just a CONFIG) to open the terminal app.
+    Run with no command (or just a CONFIG) to open the terminal app; `biceps app --help`
+    lists its options.
     """
 
 
-@main.command()
+@main.command(short_help="Open the terminal app (the command when none is given).")
 @config_argument
 @click.option(
     "--colors",
@@ -127,10 +158,10 @@ def main() -> None:
 )
 @click.option(
     "--fps",
-    type=click.IntRange(min=1),
+    type=_FiniteFloat(0.1, 1000),
     default=None,
-    help="Most frames a second (default: as fast as the terminal takes them, up to "
-    "Textual's 60, which TEXTUAL_FPS changes).",
+    help="Most frames a second, 0.1 to 1000 (default: as fast as the terminal takes them, "
+    "up to Textual's 60, which TEXTUAL_FPS changes).",
 )
 @click.option(
     "--graphics",
@@ -149,7 +180,7 @@ def main() -> None:
     "and let the terminal scale the picture up, for a slow link.",
 )
 @_refusals_exit_2
-def app(config: Path, colors: str, fps: int | None, graphics: str | None,
+def app(config: Path, colors: str, fps: float | None, graphics: str | None,
         pixel_scale: float) -> None:
     """Open the terminal app on CONFIG (default: configs/biceps.toml)."""
     from biceps.engine.config import load_config
@@ -202,7 +233,7 @@ def info(config: Path, length: float | None, flexion: float | None, as_json: boo
     )
 
 
-@main.command()
+@main.command(short_help="One row per elbow angle: length, moment arm, girth, radii.")
 @config_argument
 @click.option("--from", "start", type=FINITE,
               help="First elbow flexion, degrees (default: the least the arm allows).")
@@ -391,7 +422,7 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
     click.echo(f"wrote {output} ({size[0]}x{size[1]})", err=True)
 
 
-@main.command()
+@main.command(short_help="Write the flex cycle as a GIF, APNG, WebP or MP4 animation.")
 @config_argument
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False, path_type=Path),
               help="The file to write: .gif, .apng, .webp or .mp4 (MP4 needs biceps[video]).")
@@ -448,7 +479,7 @@ def _progress_bar(label: str, total: int) -> Iterator[Progress]:
         yield lambda done, total: bar.update(done - bar.pos)
 
 
-@main.command("export-mesh")
+@main.command("export-mesh", short_help="Write the posed arm as a mesh: OBJ, STL, PLY or glTF.")
 @config_argument
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False, path_type=Path),
               help="The file to write: .obj, .stl, .ply or .glb.")

@@ -1,5 +1,6 @@
 """The headless commands: info, snapshot and export-mesh, as a script would use them."""
 
+import importlib.metadata
 import json
 import re
 from pathlib import Path
@@ -181,3 +182,42 @@ def test_info_gives_the_range_the_muscle_itself_allows(tmp_path):
     refused = run("info", thin, "--length", "11")
     assert refused.exit_code == 2
     assert "6.23 to 10.63 cm" in refused.stderr and "node 1's radius" in refused.stderr
+
+
+@pytest.mark.parametrize(("word", "message"), [
+    ("snaphsot", "No such command or file 'snaphsot'. Did you mean 'snapshot'?"),
+    ("frobnicate", "No such command or file 'frobnicate'. Commands: app, export-mesh, info,"),
+])
+def test_a_mistyped_command_is_not_taken_for_a_file(word, message):
+    result = run(word, "-o", "x.png")
+    assert result.exit_code == 2
+    assert message in result.stderr
+    assert "No such option" not in result.stderr
+
+
+def test_a_config_file_that_is_not_there_is_still_said_so(tmp_path):
+    result = run(tmp_path / "mine.toml")
+    assert result.exit_code == 2
+    assert "mine.toml: no such file" in result.stderr
+
+
+def test_version():
+    result = run("--version")
+    assert result.exit_code == 0
+    assert result.stdout == f"biceps, version {importlib.metadata.version('biceps')}\n"
+
+
+def test_the_top_help_says_each_command_whole():
+    result = run("--help")
+    assert result.exit_code == 0
+    assert "[OPTIONS] [CONFIG | COMMAND [ARGS]...]" in result.stdout
+    assert "..." not in result.stdout.split("Commands:")[1]
+    assert "Open the terminal app (the command when none is given)." in result.stdout
+
+
+def test_the_frame_rate_may_be_a_fraction():
+    context = main.commands["app"].make_context("app", ["--fps", "2.5"])
+    assert context.params["fps"] == 2.5
+    result = run("app", "--fps", "0")
+    assert result.exit_code == 2
+    assert "must be 0.1 to 1000, got '0'" in result.stderr
