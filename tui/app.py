@@ -141,7 +141,6 @@ class BicepsApp(App[None]):
         self.set_reactive(BicepsApp.scene, self._saved)
         self._export_path = f"{config.path.stem}.png"
         self._export_size = "1920x1080"
-        self._last_export: Path | None = None
         self._last_recording: Recording | None = None
         self._notified_until: dict[str, float] = {}
 
@@ -332,7 +331,7 @@ class BicepsApp(App[None]):
             return False
         self._adopt(config, scene)
         self.unsaved = False
-        self.notify(f"Saved {config.path}", markup=False)
+        self.notify(f"Saved {config.path.resolve()}", markup=False)
         return True
 
     def _adopt(self, config: Config, saved: Scene) -> None:
@@ -352,15 +351,20 @@ class BicepsApp(App[None]):
         await self._save_as()
 
     async def _save_as(self) -> bool:
-        answer = await self.push_screen_wait(
-            Prompt("Save as", [self._config_file_field()], accept="Save"))
-        if answer is None:
-            return False
-        (path,) = answer
-        if os.path.exists(path) and not _same_file(path, self.config.path):
-            if not await self._confirm_replace(path):
+        field = self._config_file_field()
+        while True:
+            answer = await self.push_screen_wait(
+                Prompt("Save as", [field], accept="Save",
+                       check=lambda path: check_writable(path, ".toml")))
+            if answer is None:
                 return False
-        return self._save(path)
+            (path,) = answer
+            field = replace(field, text=str(path))  # if asked again, as typed
+            if (os.path.exists(path) and not _same_file(path, self.config.path)
+                    and not await self._confirm_replace(path)):
+                continue
+            if self._save(path):
+                return True
 
     @work
     async def action_open(self) -> None:
@@ -382,21 +386,20 @@ class BicepsApp(App[None]):
 
     @work
     async def action_export(self) -> None:
-        fields = [
-            Field("File", self._export_path, parse_path, PathSuggester((".png",))),
-            Field("Size in pixels", self._export_size, parse_size),
-        ]
-        prompt = Prompt("Export a PNG", fields, accept="Export",
-                        check=lambda path, size: check_writable(path, ".png"))
-        answer = await self.push_screen_wait(prompt)
-        if answer is None:
-            return
-        path, (width, height) = answer
-        self._export_path, self._export_size = str(path), f"{width}x{height}"
-        replacing = os.path.exists(path) and path != self._last_export
-        if replacing and not await self._confirm_replace(path):
-            return
-        self._last_export = path
+        while True:
+            fields = [
+                Field("File", self._export_path, parse_path, PathSuggester((".png",))),
+                Field("Size in pixels", self._export_size, parse_size),
+            ]
+            prompt = Prompt("Export a PNG", fields, accept="Export",
+                            check=lambda path, size: check_writable(path, ".png"))
+            answer = await self.push_screen_wait(prompt)
+            if answer is None:
+                return
+            path, (width, height) = answer
+            self._export_path, self._export_size = str(path), f"{width}x{height}"
+            if not os.path.exists(path) or await self._confirm_replace(path):
+                break
         self._write_picture(self.scene, path, width, height)
 
     @work(thread=True, group="export")
@@ -411,7 +414,8 @@ class BicepsApp(App[None]):
             # Whatever breaks in an export, the app and the edits in it must survive.
             reason = f"{type(error).__name__}: {error}"
         else:
-            self.call_from_thread(self.notify, f"Exported {path} ({width}x{height})", markup=False)
+            self.call_from_thread(self.notify, f"Exported {path.resolve()} ({width}x{height})",
+                                  markup=False)
             return
         self.call_from_thread(self.notify, reason, title="Not exported", severity="error",
                               markup=False)
@@ -426,16 +430,14 @@ class BicepsApp(App[None]):
             self._refuse(f"Still recording {recorder.busy.path}; wait for it to finish")
             return
         default = Path(f"{self.config.path.stem}-flex.gif")
-        answer = await self.push_screen_wait(
-            RecordPrompt(self.scene, default, self._last_recording))
-        if answer is None:
-            return
-        recording = as_recording(*answer)
-        last = self._last_recording
-        replacing = recording.path.exists() and (last is None or recording.path != last.path)
-        if replacing and not await self._confirm_replace(recording.path):
-            return
-        self._last_recording = recording
+        while True:
+            answer = await self.push_screen_wait(
+                RecordPrompt(self.scene, default, self._last_recording))
+            if answer is None:
+                return
+            recording = self._last_recording = as_recording(*answer)  # if asked again
+            if not recording.path.exists() or await self._confirm_replace(recording.path):
+                break
         recorder.record(self.scene, recording)
 
     @work
@@ -462,8 +464,9 @@ class BicepsApp(App[None]):
         return answer == "discard"
 
     async def _confirm_replace(self, path: Path) -> bool:
+        """Whether to replace ``path``; no (escape) goes back to the dialog that named it."""
         answers = [Answer("y", "Replace it", "replace", "error")]
-        question = f"{path} already exists."
+        question = f"{path.resolve()} already exists."
         return await self.push_screen_wait(Choice("Replace?", question, answers)) == "replace"
 
 

@@ -69,12 +69,14 @@ async def test_saving_the_bundled_model_asks_for_a_file_of_ones_own(biceps, tmp_
     assert load_config(tmp_path / "mine.toml").arm.length == 32.9
 
 
-async def test_save_as_into_a_missing_directory_says_so_and_keeps_the_edits(biceps, config_path):
+async def test_save_as_into_a_missing_directory_says_so_and_keeps_the_dialog(biceps, config_path):
     async with biceps() as session:
         await session.pilot.press("c", "ctrl+d")
         await _answer(session, "/nonexistent/dir/x.toml")
-        assert [note.title for note in session.notes] == ["Not saved"]
-        assert "/nonexistent/dir" in session.notes[0].message
+        assert any("there is no directory /nonexistent/dir" in w for w in session.warnings)
+        assert isinstance(session.app.screen, Prompt)  # as the export dialog does
+        assert session.app.screen.query_one(Input).value == "/nonexistent/dir/x.toml"
+        await session.pilot.press("escape")
         assert session.app.unsaved
         assert session.app.config.path == config_path
         assert session.app.scene.arm.length == 32.9
@@ -89,7 +91,8 @@ async def test_save_as_over_another_file_asks_first(biceps, tmp_path):
         assert isinstance(session.app.screen, Choice)
         await session.pilot.press("escape")
         assert other.read_text() == "keep me"
-        await session.pilot.press("ctrl+d")
+        # Back in the dialog, with the name as typed, to choose another or to insist.
+        assert session.app.screen.query_one(Input).value == str(other)
         await _answer(session, str(other))
         await session.pilot.press("y")
         assert load_config(other).arm.length == 32.9
@@ -135,13 +138,44 @@ async def test_opening_over_unsaved_edits_asks_first(biceps):
         assert session.app.scene.arm.muscle.node_count == 4
 
 
-async def test_export_writes_a_png_of_the_asked_size(biceps, tmp_path):
+async def test_export_writes_a_png_of_the_asked_size_and_says_where(biceps, tmp_path,
+                                                                      monkeypatch):
+    monkeypatch.chdir(tmp_path)
     async with biceps() as session:
         await session.pilot.press("e")
-        await _answer(session, str(tmp_path / "arm.png"), "320x200")
+        await _answer(session, "arm.png", "320x200")
         with Image.open(tmp_path / "arm.png") as picture:
             assert picture.size == (320, 200)
-        assert any("Exported" in note.message for note in session.notes)
+        assert session.notes[-1].message == f"Exported {tmp_path / 'arm.png'} (320x200)"
+
+
+async def test_export_over_an_existing_png_asks_every_time_and_escape_goes_back(biceps,
+                                                                                  tmp_path):
+    path = tmp_path / "arm.png"
+    async with biceps() as session:
+        await session.pilot.press("e")
+        await _answer(session, str(path), "64x48")
+        written = path.read_bytes()
+        await session.pilot.press("right", "e", "enter")  # the same file again
+        assert isinstance(session.app.screen, Choice)
+        await session.pilot.press("escape")
+        assert isinstance(session.app.screen, Prompt)
+        assert [box.value for box in session.app.screen.query(Input)] == [str(path), "64x48"]
+        await session.pilot.press("enter", "y")
+        await session.settle()
+    assert path.read_bytes() != written
+
+
+async def test_end_accepts_the_suggested_file_name(biceps, tmp_path):
+    (tmp_path / "arm-flexed.png").write_bytes(b"")
+    async with biceps() as session:
+        await session.pilot.press("e")
+        box = session.app.screen.query_one(Input)
+        box.value = str(tmp_path / "arm-f")
+        await session.pilot.pause(0.2)  # the suggestion is found in the background
+        box.action_home()
+        await session.pilot.press("end")
+        assert box.value == str(tmp_path / "arm-flexed.png")
 
 
 async def test_export_is_1920_by_1080_unless_asked_otherwise(biceps, tmp_path, monkeypatch):

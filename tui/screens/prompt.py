@@ -30,6 +30,16 @@ class Field(Generic[T]):
     suggester: Suggester | None = None
 
 
+class _Input(Input):
+    """An input where ``end``, like ``→`` at the end, accepts the suggested completion, as a
+    shell's does."""
+
+    def action_end(self, select: bool = False) -> None:
+        super().action_end(select)
+        if not select and self._suggestion:  # private: Textual is pinned to 8.x
+            self.action_cursor_right()
+
+
 class Prompt(ModalScreen[tuple[Any, ...] | None]):
     """Dismisses with the parsed values of every field, or ``None`` when cancelled.
 
@@ -58,7 +68,7 @@ class Prompt(ModalScreen[tuple[Any, ...] | None]):
             box.border_title = self._title
             for field in self._fields:
                 yield Label(field.label)
-                yield Input(field.text, suggester=field.suggester)
+                yield _Input(field.text, suggester=field.suggester)
             with Horizontal(classes="dialog-buttons"):
                 yield Button(self._accept, variant="primary", id="accept")
                 yield Button("Cancel (esc)", id="cancel")
