@@ -382,7 +382,7 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
     (as --ansi does in half-blocks), in that protocol, unless --size says otherwise.
     """
     from biceps.engine.export import check_writable, write_png
-    from biceps.engine.scene import SceneRenderer
+    from biceps.engine.scene import SMALL_PICTURE, SceneRenderer, supersampling
 
     if printed is not None and output is not None:
         raise click.UsageError(f"give -o FILE.png or --{printed}, not both: a picture goes "
@@ -396,7 +396,9 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
     if _own_process():
         from biceps.engine.coldstart import prepare_kernels
 
-        prepare_kernels(scene.render.shading, scene.render.ssaa)  # forks: see coldstart
+        # Forks: see coldstart. Half-blocks in a terminal are most likely a small picture.
+        height = size[1] if size else SMALL_PICTURE if printed == "ansi" else PNG_SIZE[1]
+        prepare_kernels(scene.render.shading, supersampling(scene.render, height))
     if printed == "ansi":
         from biceps.engine.config import rgb
         from biceps.tui.ansi import print_picture  # rich, only for this mode

@@ -11,10 +11,11 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from biceps.engine.config import load_config
+from biceps.engine.config import load_config, rgb
 from biceps.engine.export import write_png
 from biceps.engine.scene import Scene, SceneRenderer
 from biceps.engine.config import DEFAULT_CONFIG
+from pictures import pieces
 
 GOLDEN = Path(__file__).resolve().parent / "golden"
 SIZE = (320, 180)
@@ -51,3 +52,11 @@ def test_picture_matches_its_golden_image(pose):
     # changed picture moves far more than this.
     assert difference.mean() < 0.5
     assert np.mean(difference > 24) < 0.002
+
+
+@pytest.mark.parametrize("size", [(46, 44), (78, 44), (100, 56)])
+def test_a_small_picture_keeps_the_thin_bones_whole(size):
+    # 46x44 and 78x44 are the picture at 80x24 with the side panel and without.
+    config = load_config(DEFAULT_CONFIG)
+    picture = SceneRenderer().render(Scene.of(config), *size)
+    assert pieces(picture, rgb(config.render.background)) == 1

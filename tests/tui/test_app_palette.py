@@ -13,6 +13,7 @@ from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer
 from biceps.tui.palette import COLOURS, FIRST, Palette256, colour, nearest
 from biceps.tui.widgets.viewport import Viewport
+from pictures import shown_cells
 
 BACKGROUND = (0x12, 0x16, 0x1C)  # the bundled model's
 
@@ -87,15 +88,10 @@ async def test_the_app_in_256_colours_shows_the_mapped_picture(biceps, monkeypat
         viewport = session.app.screen.query_one(Viewport)
         width, height = viewport.size
         numbers = np.zeros((2 * height, width), dtype=int)
-        for y in range(height):
-            x = 0
-            for segment in viewport.render_line(y):
-                # The entries Textual writes: it downgrades whatever is not one already.
-                top, bottom = (colour.downgrade(ColorSystem.EIGHT_BIT).number for colour in
-                               (segment.style.color or segment.style.bgcolor,
-                                segment.style.bgcolor))
-                numbers[2 * y: 2 * y + 2, x: x + segment.cell_length] = [[top], [bottom]]
-                x += segment.cell_length
+        for x, y, top, bottom in shown_cells(viewport):
+            # The entries Textual writes: it downgrades whatever is not one already.
+            numbers[2 * y: 2 * y + 2, x] = [colour.downgrade(ColorSystem.EIGHT_BIT).number
+                                            for colour in (top, bottom)]
         shown = np.array(EIGHT_BIT_PALETTE._colors, dtype=np.uint8)[numbers]
         frame = SceneRenderer().render(Scene.of(config), width, 2 * height)
         assert np.all(numbers[np.all(frame == rgb(config.render.background), axis=2)] == 233)

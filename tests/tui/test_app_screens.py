@@ -7,6 +7,7 @@ from textual.binding import Binding
 from textual.command import CommandList
 from textual.widgets import Static
 
+from biceps.engine.config import rgb
 from biceps.engine.scene import SceneRenderer
 from biceps.tui.app import BicepsApp
 from biceps.tui.commands import KeyCommands
@@ -14,6 +15,7 @@ from biceps.tui.screens.help import HelpScreen
 from biceps.tui.screens.main import MainScreen
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.viewport import Viewport
+from pictures import pieces, shown_pixels
 
 
 @pytest.fixture
@@ -138,3 +140,13 @@ async def test_a_wide_terminal_shows_the_panel_and_h_hides_it(biceps):
         assert viewport.render_line(0).cell_length == viewport.size.width
         await session.pilot.press("h")
         assert side.display
+
+
+async def test_at_80_by_24_the_bones_are_whole_with_the_side_panel_or_without(biceps, config):
+    async with biceps(size=(80, 24)) as session:
+        viewport = session.app.screen.query_one(Viewport)
+        background = rgb(config.render.background)
+        for _ in range(2):
+            await session.pilot.press("h")
+            await session.settle()
+            assert pieces(shown_pixels(viewport), background) == 1

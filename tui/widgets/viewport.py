@@ -36,7 +36,7 @@ from textual.strip import Strip
 from textual.widget import Widget
 
 from biceps.engine.config import rgb
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene, SceneRenderer, supersampling
 from biceps.tui.encoder import Picture, PictureEncoder
 from biceps.tui.halfblocks import HalfBlocks, rgb_colour
 from biceps.tui.latest_only import LatestOnly
@@ -62,11 +62,12 @@ class Viewport(Widget, can_focus=True):
     ALLOW_SELECT = False  # a drag turns the model; it does not select text
 
     class FrameRendered(Message, bubble=False):
-        def __init__(self, number: int, scene: Scene, picture: Picture) -> None:
+        def __init__(self, number: int, scene: Scene, picture: Picture, height: int) -> None:
             super().__init__()
             self.number = number
             self.scene = scene
             self.picture = picture
+            self.height = height  # pixels
 
     class RenderFailed(Message, bubble=False):
         def __init__(self, number: int, reason: str) -> None:
@@ -187,7 +188,8 @@ class Viewport(Widget, can_focus=True):
                 if self._palette is not None:
                     frame = self._palette.mapped(frame, rgb(request.scene.render.background))
                 picture = encoder.encode(frame)
-                message = self.FrameRendered(request.number, request.scene, picture)
+                message = self.FrameRendered(request.number, request.scene, picture,
+                                             request.height)
             except Exception as error:
                 # Whatever goes wrong in one frame, the app and the edits must survive it,
                 # and the next scene may well render: report it and carry on. The encoder
@@ -206,7 +208,7 @@ class Viewport(Widget, can_focus=True):
         self._shown = message.number
         if picture.changed:  # (no regions would mean all of them)
             self.refresh(*(self._rows(y, rows) for y, rows in picture.changed))
-        self._caption(*_view_captions(message.scene))
+        self._caption(*_view_captions(message.scene, message.height))
         self.call_after_refresh(self._when_drawn, DRAW_TRIES)
 
     def _when_drawn(self, tries: int) -> None:
@@ -323,11 +325,15 @@ class Viewport(Widget, can_focus=True):
         self.post_message(self.Zoomed(-1))
 
 
-def _view_captions(scene: Scene) -> tuple[str, str]:
-    """How the model is turned and scaled; how it is shaded and lit."""
+def _view_captions(scene: Scene, height: int) -> tuple[str, str]:
+    """How the model is turned and scaled; how a picture ``height`` pixels tall is shaded
+    and lit."""
     view, render = scene.view, scene.render
     x, y, z = scene.light.position
-    antialiasing = f"AA {render.ssaa}x{render.ssaa}" if render.ssaa > 1 else "AA off"
+    samples = supersampling(render, height)
+    antialiasing = f"AA {samples}x{samples}" if samples > 1 else "AA off"
+    if samples > render.ssaa:
+        antialiasing += " (small)"  # see SMALL_PICTURE
     return (
         f"yaw {_degrees(view.yaw)} pitch {_degrees(view.pitch)} roll {_degrees(view.roll)}"
         f" ×{view.scale:.2f}",
