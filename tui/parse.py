@@ -13,6 +13,8 @@ from biceps.engine.errors import shown
 
 def parse_number(text: str) -> float:
     """A finite decimal number: ``2``, ``0.35``, ``1e-1``."""
+    if not text.strip():
+        raise ValueError("give a number")
     try:
         value = float(text)
     except ValueError:

@@ -21,7 +21,16 @@ class Stats(Static):
         table.add_row("flexion", f"{arm.flexion:.1f}°")
         table.add_row("moment arm", f"{arm.moment_arm:.2f} cm")
         table.add_row("volume", f"{muscle.volume:.3f} cm³")
-        table.add_row("  error", f"{muscle.volume_error:.1e} ({muscle.volume_mode})")
+        table.add_row("  with", "both end caps" if muscle.volume_mode == "closed"
+                      else "no end caps")
+        table.add_row("  kept to", _kept(muscle.volume_error))
         table.add_row("max radius", f"{muscle.max_radius:.3f} cm")
         table.add_row("girth", f"{muscle.girth:.2f} cm")
         self.update(table)
+
+
+def _kept(error: float) -> str:
+    """How closely the volume is kept, the relative error in words: ``1 part in 5e15``."""
+    if error == 0:
+        return "exactly"
+    return f"1 part in {1 / error:.0e}".replace("e+", "e")
