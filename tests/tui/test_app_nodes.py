@@ -1,6 +1,7 @@
 """Editing the muscle node by node in the table: good values take, bad ones change nothing."""
 
 import io
+import re
 from pathlib import Path
 
 import pytest
@@ -67,7 +68,8 @@ async def test_confirming_an_untouched_edit_changes_nothing_even_when_contracted
 
 BAD_VALUES = [
     ("abc", "2.05", "not a number"),
-    ("", "2.05", "nothing is not a number"),
+    ("", "2.05", "Radius (cm, above 0): give a number"),
+    ("2.08", " ", "Growth (0 or more): give a number"),
     ("nan", "2.05", "not a finite number"),
     ("-1", "2.05", "radius must be above 0"),
     ("0", "2.05", "radius must be above 0"),
@@ -167,3 +169,24 @@ async def test_the_range_shown_and_a_held_stretch_stop_where_a_node_thins_to_not
         assert session.warnings == [
             "the muscle is at its longest, 10.63 cm: stretched further, node 1's radius "
             "would fall to zero"]
+
+
+async def test_end_and_home_pick_the_last_and_the_first_node(biceps):
+    async with biceps() as session:
+        table = session.app.screen.query_one(NodeTable)
+        await session.pilot.press("tab", "end")
+        assert table.cursor_row == 14
+        await session.pilot.press("home")
+        assert table.cursor_row == 0
+
+
+async def test_the_numbers_say_what_the_volume_is_and_how_closely_it_is_kept(biceps):
+    async with biceps() as session:
+        stats = session.app.screen.query_one(Stats)
+        lines = _text(stats.content).splitlines()
+        assert "volume     198.879 cm³" in lines[3]
+        assert lines[4].split() == ["with", "both", "end", "caps"]
+        assert lines[5].split() == ["kept", "to", "exactly"]
+        await session.pilot.press("c")
+        kept = _text(stats.content).splitlines()[5]
+        assert re.fullmatch(r"\s*kept to\s+1 part in \de1[2-9]\s*", kept), kept

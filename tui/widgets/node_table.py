@@ -24,6 +24,8 @@ class NodeTable(DataTable):
         Binding("n,insert", "insert_node", "Insert after"),
         Binding("delete,backspace", "delete_node", "Delete"),
         Binding("slash", "subdivide", "Subdivide all"),
+        Binding("home", "first_node", "First node", show=False),
+        Binding("end", "last_node", "Last node", show=False),
     ]
 
     class ChangeRequested(Message):
@@ -97,6 +99,12 @@ class NodeTable(DataTable):
             _number_field("Growth (0 or more)", muscle.growth[index]),
         ]
         self.app.push_screen(Prompt(f"Node {index + 1}", fields, check=check), request)
+
+    def action_first_node(self) -> None:
+        self.move_cursor(row=0)
+
+    def action_last_node(self) -> None:
+        self.move_cursor(row=self.row_count - 1)
 
     def action_insert_node(self) -> None:
         index = self.cursor_row
