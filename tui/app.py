@@ -144,6 +144,14 @@ class BicepsApp(App[None]):
         self._last_recording: Recording | None = None
         self._notified_until: dict[str, float] = {}
 
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        # On the 'too small' screen nothing is seen to change, so nothing changes: only
+        # help and quitting work there.
+        screen = self.screen
+        if isinstance(screen, MainScreen) and screen.too_small:
+            return action in ("help", "quit")
+        return True
+
     def get_default_screen(self) -> Screen:
         return MainScreen(self.pacer, self._encoder)
 

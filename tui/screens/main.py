@@ -12,6 +12,7 @@ from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
 from textual.events import Resize, ScreenSuspend
 from textual.screen import Screen
+from textual.widget import Widget
 from textual.widgets import Footer, Static
 
 from biceps.engine.arm import Arm
@@ -46,6 +47,7 @@ class MainScreen(Screen[None]):
         # Real pixels are painted over the cells: notifications keep to the side panel.
         self.set_class(isinstance(encoder, ImageEncoder), "-pixels")
         self._panel_wanted: bool | None = None  # None: as the width has it
+        self._focused_before: Widget | None = None
 
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
@@ -73,8 +75,29 @@ class MainScreen(Screen[None]):
 
     def on_resize(self, event: Resize) -> None:
         width, height = event.size
-        self.set_class(width < SMALLEST_USEFUL[0] or height < SMALLEST_USEFUL[1], "-too-small")
+        too_small = width < SMALLEST_USEFUL[0] or height < SMALLEST_USEFUL[1]
+        if too_small and not self.too_small:
+            # Hidden, the focused widget loses the focus: give it back when it shows again.
+            self._focused_before = self.focused
+        elif self.too_small and not too_small:
+            self.call_after_refresh(self._refocus)
+        self.set_class(too_small, "-too-small")
         self._place_panel()
+
+    @property
+    def too_small(self) -> bool:
+        """Whether the terminal is too small to show the picture: then no key should
+        change what cannot be seen."""
+        return self.has_class("-too-small")
+
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        return not self.too_small
+
+    def _refocus(self) -> None:
+        widget = self._focused_before
+        if widget not in self.focus_chain:  # the side panel, say, has been hidden since
+            widget = self.query_one(Viewport)
+        widget.focus()
 
     @property
     def panel_shown(self) -> bool:
