@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import time
+
 import pytest
 
+from biceps.engine.scene import SceneRenderer
 from biceps.tui.widgets.viewport import Viewport
 
 
@@ -51,3 +54,22 @@ async def test_the_captions_follow_the_picture_on_screen(biceps):
         await session.pilot.press("right")
         await session.settle()
         assert viewport.border_title.startswith(f"yaw {session.app.scene.view.yaw:g}°")
+
+
+async def test_a_slow_picture_says_it_is_being_drawn_until_it_comes(biceps, monkeypatch):
+    render = SceneRenderer.render
+
+    def slow_phong(renderer, scene, width, height):
+        if scene.render.shading == "phong":  # as a first Phong frame compiles its kernels
+            time.sleep(1.0)
+        return render(renderer, scene, width, height)
+
+    monkeypatch.setattr(SceneRenderer, "render", slow_phong)
+    async with biceps() as session:
+        viewport = session.app.screen.query_one(Viewport)
+        assert "drawing" not in viewport.border_subtitle
+        await session.pilot.press("g")
+        await session.pilot.pause(0.6)
+        assert viewport.border_subtitle == "drawing…"
+        await session.settle()
+        assert viewport.border_subtitle.startswith("phong")

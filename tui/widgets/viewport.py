@@ -23,6 +23,7 @@ changes, and written again when Textual has repainted cells under it
 from __future__ import annotations
 
 from dataclasses import dataclass
+from time import monotonic
 from typing import Sequence
 
 from rich.color import Color
@@ -33,6 +34,7 @@ from textual._compositor import ChopsUpdate, CompositorUpdate, LayoutUpdate
 from textual.geometry import Region, Size
 from textual.message import Message
 from textual.strip import Strip
+from textual.timer import Timer
 from textual.widget import Widget
 
 from biceps.engine.config import rgb
@@ -46,6 +48,11 @@ from biceps.tui.palette import colour as palette_colour
 
 
 DRAW_TRIES = 8  # refreshes to wait for a frame to be written before pacing on regardless
+
+BUSY_AFTER = 0.3
+"""Seconds without a new frame, while one is wanted, before the caption says the picture is
+being drawn: a first Phong frame compiles its kernels, a muscle of many nodes takes long."""
+BUSY_CAPTION = "drawing…"
 
 
 @dataclass(frozen=True)
@@ -116,8 +123,11 @@ class Viewport(Widget, can_focus=True):
         self._latest_image, self._latest_size = "", Size(0, 0)
         self._image_on_screen = False  # whether an image was written and not cleared since
         self._background = Style()
-        self._captions = ("", "")
+        self._captions = ("", "")  # on the border now
+        self._frame_captions = ("", "")  # those of the frame on screen
         self._captioning = False
+        self._progress_at = 0.0  # when the last frame came, or the wait for one began
+        self._progress_timer: Timer | None = None
 
     @property
     def up_to_date(self) -> bool:
@@ -172,10 +182,25 @@ class Viewport(Widget, can_focus=True):
         if self._scene is None or not width or not height:
             return
         cell = self._encoder.cell
+        if self.up_to_date:
+            self._progress_at = monotonic()
         self._requested += 1
         self._requests.put(
             _Request(self._requested, self._scene, width * cell.width, height * cell.height)
         )
+        self._watch_progress()
+
+    def _watch_progress(self) -> None:
+        if self._progress_timer is None:
+            self._progress_timer = self.set_timer(BUSY_AFTER, self._check_progress)
+
+    def _check_progress(self) -> None:
+        self._progress_timer = None
+        if self.up_to_date:
+            return
+        if monotonic() - self._progress_at >= BUSY_AFTER:
+            self._caption(self._frame_captions[0], BUSY_CAPTION)  # until the next frame
+        self._watch_progress()
 
     @work(thread=True, exclusive=True, group="render")
     def _render_frames(self) -> None:
@@ -206,9 +231,11 @@ class Viewport(Widget, can_focus=True):
         self._latest_size = Size(picture.strips[0].cell_length if picture.strips else 0,
                                  len(picture.strips))
         self._shown = message.number
+        self._progress_at = monotonic()
         if picture.changed:  # (no regions would mean all of them)
             self.refresh(*(self._rows(y, rows) for y, rows in picture.changed))
-        self._caption(*_view_captions(message.scene, message.height))
+        self._frame_captions = _view_captions(message.scene, message.height)
+        self._caption(*self._frame_captions)
         self.call_after_refresh(self._when_drawn, DRAW_TRIES)
 
     def _when_drawn(self, tries: int) -> None:
@@ -255,6 +282,8 @@ class Viewport(Widget, can_focus=True):
     def on_viewport_render_failed(self, message: RenderFailed) -> None:
         self._requests.done()
         self._shown = message.number
+        self._progress_at = monotonic()
+        self._caption(*self._frame_captions)
         self.notify(f"The picture cannot be drawn: {message.reason}", severity="error",
                     markup=False)
 
