@@ -497,7 +497,8 @@ def export_mesh(config: Path, output: Path, segments: int | None, length: float 
     check_writable(output, *MESH_FORMATS)
     loaded = load_config(config)
     arm = posed(loaded.arm, length, flexion)
-    write_mesh(output, arm, segments or loaded.render.segments)
+    render = loaded.render
+    write_mesh(output, arm, segments or render.segments, render.muscle_colour, render.bone_colour)
     click.echo(f"wrote {output}", err=True)
 
 

@@ -11,9 +11,11 @@ import numpy as np
 from PIL import Image
 
 from biceps.engine.arm import Arm
+from biceps.engine.config import rgb
 from biceps.engine.errors import FileError, shown
 from biceps.engine.files import write_atomically
 from biceps.engine.anatomy import arm_parts
+from biceps.engine.settings import RenderSettings
 
 # zlib level 1: within a few per cent of level 6's size on these pictures (a flat
 # background, smooth shading) at a fraction of the time, which dominates a headless snapshot.
@@ -74,23 +76,35 @@ def write_png(path: str | os.PathLike, frame: np.ndarray) -> None:
     write_atomically(path, png_bytes(frame))
 
 
-def write_mesh(path: str | os.PathLike, arm: Arm, segments: int) -> None:
+def write_mesh(path: str | os.PathLike, arm: Arm, segments: int,
+               muscle_colour: str = RenderSettings.muscle_colour,
+               bone_colour: str = RenderSettings.bone_colour) -> None:
     """Write the arm in its current pose as named parts (``anatomy.PARTS``: the muscle and
     each bone).
 
     World space, centimetres; the format follows the suffix (OBJ, STL, PLY or binary glTF).
-    STL and PLY hold a single mesh, so there the parts are merged.
+    STL and PLY hold a single mesh, so there the parts are merged. In glTF each part has
+    its material, in the muscle's or the bones' colour (``#rrggbb``); OBJ keeps its
+    materials in a second file, so it has none here.
     """
     import trimesh  # heavy, and only this command needs it
+    from trimesh.visual import TextureVisuals
+    from trimesh.visual.material import PBRMaterial
 
     path = Path(path)
     check_writable(path, *MESH_FORMATS)
+    file_type = path.suffix.lower().lstrip(".")
     scene = trimesh.Scene()
     for name, mesh in arm_parts(arm, segments).items():
         geometry = trimesh.Trimesh(mesh.vertices, mesh.triangles, vertex_normals=mesh.normals,
                                    process=False)
+        if file_type == "glb":
+            colour = rgb(muscle_colour if name == "muscle" else bone_colour)
+            # Matte and not metallic: how the app shades them.
+            geometry.visual = TextureVisuals(material=PBRMaterial(
+                name=name, baseColorFactor=[*colour, 255], metallicFactor=0.0,
+                roughnessFactor=0.7))
         scene.add_geometry(geometry, node_name=name, geom_name=name)
-    file_type = path.suffix.lower().lstrip(".")
     data = scene.to_mesh().export(file_type=file_type) if file_type in ("stl", "ply") \
         else scene.export(file_type=file_type)
     write_atomically(path, data.encode() if isinstance(data, str) else data)

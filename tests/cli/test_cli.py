@@ -103,6 +103,16 @@ def test_export_mesh_writes_named_parts_to_gltf(tmp_path):
     assert scene.geometry["muscle"].is_watertight
 
 
+def test_export_mesh_gives_each_gltf_part_its_colour(tmp_path):
+    out = tmp_path / "arm.glb"
+    assert run("export-mesh", DEFAULT_CONFIG, "-o", out).exit_code == 0
+    scene = trimesh.load(out, force="scene")
+    colours = {name: tuple(geometry.visual.material.baseColorFactor[:3])
+               for name, geometry in scene.geometry.items()}
+    assert colours == {"muscle": (0xB4, 0x48, 0x3E), "humerus": (0xE3, 0xD9, 0xC0),
+                       "forearm": (0xE3, 0xD9, 0xC0), "elbow": (0xE3, 0xD9, 0xC0)}
+
+
 def test_export_mesh_writes_named_objects_to_obj(tmp_path):
     out = tmp_path / "arm.obj"
     assert run("export-mesh", DEFAULT_CONFIG, "-o", out).exit_code == 0
