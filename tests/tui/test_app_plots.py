@@ -84,8 +84,9 @@ async def test_an_edited_node_sweeps_the_curves_again(biceps):
 
 
 async def test_a_terminal_too_small_for_the_layout_hides_the_plots_too(biceps):
-    async with biceps(size=(50, 12)) as session:
+    async with biceps(size=(100, 30)) as session:
         await session.pilot.press("p")
+        await session.pilot.resize_terminal(50, 12)
         await session.settle()
         plots = session.app.screen.query_one(Plots)
         assert plots.has_class("-shown") and plots.region.height == 0
