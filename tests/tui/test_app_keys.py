@@ -4,6 +4,7 @@ import pytest
 from textual import events
 
 from biceps.tui.app import BicepsApp
+from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.viewport import Viewport
 
 # The bundled model starts at yaw -25, pitch 10, roll 0, scale 1, offset 0, light
@@ -135,3 +136,22 @@ async def test_left_and_right_still_turn_while_the_node_table_has_focus(biceps):
         assert session.app.focused.id == "nodes"
         assert session.app.scene.view.yaw == -20.0
         assert session.app.scene.view.pitch == 10.0  # down moved the table's cursor instead
+
+
+async def test_keys_queued_while_the_app_was_busy_show_their_numbers_once(biceps, monkeypatch):
+    shown = []
+    show = NodeTable.show
+
+    def counting(table, muscle):
+        shown.append(muscle.length)
+        return show(table, muscle)
+
+    monkeypatch.setattr(NodeTable, "show", counting)
+    async with biceps() as session:
+        shown.clear()
+        for _ in range(30):  # as a held key's repeats wait while a slow update runs
+            session.app.post_message(events.Key("c", "c"))
+        await session.pilot.pause()
+        assert session.app.scene.arm.length == 30.0
+        assert shown[-1] == 30.0  # the latest, and
+        assert len(shown) <= 2  # not a queue of 30 updates

@@ -48,6 +48,7 @@ class MainScreen(Screen[None]):
         self.set_class(isinstance(encoder, ImageEncoder), "-pixels")
         self._panel_wanted: bool | None = None  # None: as the width has it
         self._focused_before: Widget | None = None
+        self._numbers_due = False  # the numbers of a newer arm are to be shown
 
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
@@ -118,11 +119,21 @@ class MainScreen(Screen[None]):
 
     def _show_scene(self, scene: Scene) -> None:
         self.query_one(Viewport).show(scene)
-        if scene.arm != self._arm:  # turning, moving and lighting leave the numbers be
-            self._arm = scene.arm
-            self.query_one(Stats).show(scene.arm)
-            self.query_one(NodeTable).show(scene.arm.muscle)
-            self.query_one(Plots).show(scene.arm)
+        # Turning, moving and lighting leave the numbers be. A burst of edits (a held key,
+        # keys queued while the app was busy) shows its numbers once, after the burst: the
+        # screen refreshes only once the keys waiting have been handled.
+        if scene.arm != self._arm and not self._numbers_due:
+            self._numbers_due = True
+            self.call_after_refresh(self._show_numbers)
+
+    def _show_numbers(self) -> None:
+        self._numbers_due = False
+        arm = self.app.scene.arm
+        if arm != self._arm:
+            self._arm = arm
+            self.query_one(Stats).show(arm)
+            self.query_one(NodeTable).show(arm.muscle)
+            self.query_one(Plots).show(arm)
 
     def _show_file(self) -> None:
         self.query_one(Stats).border_title = self.app.sub_title + (
