@@ -39,6 +39,7 @@ from biceps.tui.changes import (
     FINE_STEP,
     LIGHT_STEP,
     MOVE_STEP,
+    SLOW_NODES,
     TURN_STEP,
     fitted,
     has_unsaved_edits,
@@ -311,7 +312,13 @@ class BicepsApp(App[None]):
             self._refuse(str(error))
             return
         self._edit(edited, message.what)
-        if message.undoable_note:
+        count = edited.muscle.node_count
+        if count > SLOW_NODES >= arm.muscle.node_count:
+            self.notify(
+                f"{count:,} nodes: the picture will follow each change slowly, a mesh of "
+                f"{count:,} rings; the numbers and the table stay quick. ctrl+z undoes it.",
+                severity="warning", markup=False)
+        elif message.undoable_note:
             self.notify(f"{message.what.capitalize()}; ctrl+z undoes it", markup=False)
 
     def action_help(self) -> None:

@@ -68,8 +68,8 @@ async def test_confirming_an_untouched_edit_changes_nothing_even_when_contracted
 
 BAD_VALUES = [
     ("abc", "2.05", "not a number"),
-    ("", "2.05", "Radius (cm, above 0): give a number"),
-    ("2.08", " ", "Growth (0 or more): give a number"),
+    ("", "2.05", "Radius (1e-06 to 10000 cm): give a number"),
+    ("2.08", " ", "Growth (0 to 10000): give a number"),
     ("nan", "2.05", "not a finite number"),
     ("-1", "2.05", "radius must be above 0"),
     ("0", "2.05", "radius must be above 0"),
@@ -190,3 +190,47 @@ async def test_the_numbers_say_what_the_volume_is_and_how_closely_it_is_kept(bic
         await session.pilot.press("c")
         kept = _text(stats.content).splitlines()[5]
         assert re.fullmatch(r"\s*kept to\s+1 part in \de1[2-9]\s*", kept), kept
+
+
+@pytest.mark.parametrize(("radius", "growth", "complaint"), [
+    ("1e9", "2.05", "node 8: a radius of 1e+09 cm is more than the model can compute and draw; "
+                    "it takes 1e-06 to 10000 cm"),
+    ("1e-9", "2.05", "node 8: a radius of 1e-09 cm is less than the model can compute"),
+    ("2.08", "1e5", "node 8: a growth of 100000 is more than the model can compute"),
+])
+async def test_a_value_the_model_cannot_draw_is_refused_saying_what_it_takes(
+    biceps, radius, growth, complaint
+):
+    async with biceps() as session:
+        before = session.app.scene
+        await _edit(session, 8, radius=radius, growth=growth)
+        assert isinstance(session.app.screen, Prompt)
+        assert complaint in session.warnings[-1]
+        assert session.app.scene is before
+
+
+async def test_subdividing_says_when_the_picture_will_be_slow_and_stops_at_the_most_nodes(
+    biceps, monkeypatch
+):
+    monkeypatch.setattr("biceps.tui.changes.most_nodes", lambda: 200)
+    async with biceps() as session:
+        monkeypatch.setattr("biceps.tui.app.SLOW_NODES", 50)
+        await session.pilot.press("tab", "slash", "slash")
+        assert session.app.scene.arm.muscle.node_count == 57
+        assert "57 nodes: the picture will follow each change slowly" in session.warnings[-1]
+        await session.pilot.press("slash", "slash")
+        assert session.app.scene.arm.muscle.node_count == 113
+        assert session.warnings[-1] == ("subdividing would make 225 nodes; a muscle has at most "
+                                        "200, more than a picture can show apart, each a ring "
+                                        "of its mesh")
+
+
+@pytest.mark.parametrize("radius", ["10000", "0.000001"])
+async def test_the_numbers_fit_their_panel_at_either_end_of_the_radii(biceps, radius):
+    async with biceps() as session:
+        await _edit(session, 8, radius=radius)
+        await session.pilot.pause()
+        stats = session.app.screen.query_one(Stats)
+        assert session.app.scene.arm.muscle.radii[7] == float(radius)
+        lines = _text(stats.content).splitlines()
+        assert max(len(line.rstrip()) for line in lines) <= stats.content_size.width

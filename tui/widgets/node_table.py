@@ -11,7 +11,7 @@ from textual.message import Message
 from textual.widgets import DataTable
 
 from biceps.engine.muscle import Muscle
-from biceps.tui.changes import with_node
+from biceps.tui.changes import node_bounds, subdivided, with_node, with_node_inserted
 from biceps.tui.parse import parse_number
 from biceps.tui.screens.prompt import Field, Prompt
 
@@ -94,9 +94,10 @@ class NodeTable(DataTable):
                 self._request(lambda current: with_node(current, index, radius, growth),
                               f"node {index + 1} edited")
 
+        bounds = node_bounds()
         fields = [
-            _number_field("Radius (cm, above 0)", muscle.radii[index]),
-            _number_field("Growth (0 or more)", muscle.growth[index]),
+            _number_field(f"Radius ({_range(*bounds['radius'])})", muscle.radii[index]),
+            _number_field(f"Growth ({_range(*bounds['growth'])})", muscle.growth[index]),
         ]
         self.app.push_screen(Prompt(f"Node {index + 1}", fields, check=check), request)
 
@@ -108,7 +109,7 @@ class NodeTable(DataTable):
 
     def action_insert_node(self) -> None:
         index = self.cursor_row
-        self._request(lambda current: current.with_node_inserted(index),
+        self._request(lambda current: with_node_inserted(current, index),
                       f"a node inserted after node {index + 1}")
 
     def action_delete_node(self) -> None:
@@ -117,11 +118,15 @@ class NodeTable(DataTable):
                       undoable_note=True)
 
     def action_subdivide(self) -> None:
-        self._request(Muscle.subdivided, "every segment subdivided")
+        self._request(subdivided, "every segment subdivided")
 
     def _request(self, change: Callable[[Muscle], Muscle], what: str,
                  undoable_note: bool = False) -> None:
         self.post_message(self.ChangeRequested(change, what, undoable_note))
+
+
+def _range(low: float, high: float, unit: str) -> str:
+    return f"{low:g} to {high:g}{unit}"
 
 
 def _number_field(label: str, value: float) -> Field[float]:
