@@ -16,17 +16,26 @@ class Stats(Static):
         table = Table.grid(padding=(0, 1))
         table.add_column(style="dim", no_wrap=True)
         table.add_column(no_wrap=True)
-        table.add_row("length", f"{muscle.length:.2f} cm")
-        table.add_row("  range", f"{shortest:.2f} to {longest:.2f}")
+        table.add_row("length", f"{_number(muscle.length, 2)} cm")
+        table.add_row("  range", f"{_number(shortest, 2)} to {_number(longest, 2)}")
         table.add_row("flexion", f"{arm.flexion:.1f}°")
-        table.add_row("moment arm", f"{arm.moment_arm:.2f} cm")
-        table.add_row("volume", f"{muscle.volume:.3f} cm³")
+        table.add_row("moment arm", f"{_number(arm.moment_arm, 2)} cm")
+        table.add_row("volume", f"{_number(muscle.volume, 3)} cm³")
         table.add_row("  with", "both end caps" if muscle.volume_mode == "closed"
                       else "no end caps")
         table.add_row("  kept to", _kept(muscle.volume_error))
-        table.add_row("max radius", f"{muscle.max_radius:.3f} cm")
-        table.add_row("girth", f"{muscle.girth:.2f} cm")
+        table.add_row("max radius", f"{_number(muscle.max_radius, 3)} cm")
+        table.add_row("girth", f"{_number(muscle.girth, 2)} cm")
         self.update(table)
+
+
+def _number(value: float, decimals: int) -> str:
+    """``value`` with ``decimals`` decimals where that reads well, else in four significant
+    digits, so that no number the model allows (radii of 1e-6 to 1e4 cm, volumes of their
+    cubes) runs past the panel's width: ``33.00``, ``1.037e+10``, ``4.189e-18``."""
+    if value == 0 or 10.0 ** -decimals <= abs(value) < 1e5:
+        return f"{value:.{decimals}f}"
+    return f"{value:.4g}"
 
 
 def _kept(error: float) -> str:
