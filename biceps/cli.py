@@ -192,7 +192,7 @@ def app(config: Path, colors: str, fps: float | None, graphics: str | None,
             pixel_scale=pixel_scale)
 
 
-@main.command()
+@main.command(short_help="Say what this terminal can show, and what the app would use.")
 @click.option("--graphics", type=click.Choice(GRAPHICS), default="auto", show_default=True,
               help="The choice to explain, as the app would take it.")
 def doctor(graphics: str) -> None:
@@ -354,7 +354,7 @@ def posed_scene(config_path: Path, length: float | None, flexion: float | None,
 PNG_SIZE = (1920, 1080)
 
 
-@main.command()
+@main.command(short_help="Render CONFIG to a PNG file, or print it to this terminal.")
 @config_argument
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
               help="The PNG file to write.")

@@ -59,7 +59,7 @@ def test_snapshot_iterm_and_sixel(monkeypatch):
 
 def test_snapshot_takes_one_way_to_print():
     result = run("snapshot", DEFAULT_CONFIG, "--kitty", "-o", "x.png")
-    assert result.exit_code == 2 and "give -o FILE.png, or one of --ansi" in result.stderr
+    assert result.exit_code == 2 and "give -o FILE.png or --kitty, not both" in result.stderr
 
 
 def test_doctor_says_what_it_found_and_why(monkeypatch):

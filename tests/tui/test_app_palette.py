@@ -14,6 +14,7 @@ from biceps.engine.scene import Scene, SceneRenderer
 from biceps.tui.palette import COLOURS, FIRST, Palette256, colour, nearest
 from biceps.tui.widgets.viewport import Viewport
 from pictures import shown_cells
+from test_app_encoder import Corners, OneViewport, _shown
 
 BACKGROUND = (0x12, 0x16, 0x1C)  # the bundled model's
 
@@ -96,3 +97,20 @@ async def test_the_app_in_256_colours_shows_the_mapped_picture(biceps, monkeypat
         frame = SceneRenderer().render(Scene.of(config), width, 2 * height)
         assert np.all(numbers[np.all(frame == rgb(config.render.background), axis=2)] == 233)
         assert _block_error(shown, frame) < _block_error(_downgraded(frame), frame) / 2
+
+
+async def test_real_pixels_are_not_mapped_onto_the_palette(monkeypatch, config):
+    monkeypatch.setattr(textual.constants, "COLOR_SYSTEM", "256")
+
+    class Frames(Corners):
+        def encode(self, frame):
+            self.frames = [*getattr(self, "frames", []), frame.copy()]
+            return super().encode(frame)
+
+    encoder = Frames()
+    app = OneViewport(Scene.of(config).with_view(scale=2.0), encoder)
+    async with app.run_test(size=(60, 20)) as pilot:
+        await _shown(app, pilot)
+    palette = {tuple(c) for c in COLOURS.tolist()}
+    colours = {tuple(c) for c in encoder.frames[-1].reshape(-1, 3).tolist()}
+    assert not colours <= palette  # an image carries every colour of the frame

@@ -40,7 +40,7 @@ from textual.widget import Widget
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer, supersampling
 from biceps.tui.encoder import Picture, PictureEncoder
-from biceps.tui.halfblocks import HalfBlocks, rgb_colour
+from biceps.tui.halfblocks import HalfBlocks
 from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer
 from biceps.tui.palette import Palette256, background_colour
@@ -108,11 +108,13 @@ class Viewport(Widget, can_focus=True):
         terminal (default: :class:`HalfBlocks`), from the render thread."""
         super().__init__(id=id)
         self._pacer = pacer
-        # A 256-colour terminal gets every frame mapped onto its palette as a whole
-        # (tui/palette.py); left to Textual, each colour would be mapped on its own.
-        self._palette = Palette256() if self.app.console.color_system == "256" else None
-        colours = rgb_colour if self._palette is None else palette_colour
-        self._encoder = HalfBlocks(colours) if encoder is None else encoder
+        encoder = HalfBlocks() if encoder is None else encoder
+        # Half-blocks in a 256-colour terminal: every frame mapped onto its palette as a
+        # whole (tui/palette.py), where Textual would map each colour on its own.
+        self._palette: Palette256 | None = None
+        if isinstance(encoder, HalfBlocks) and self.app.console.color_system == "256":
+            self._palette, encoder = Palette256(), HalfBlocks(palette_colour)
+        self._encoder = encoder
         self._scene: Scene | None = None
         self._requests: LatestOnly[_Request] = LatestOnly()
         self._requested = 0  # the number of the newest request
