@@ -105,3 +105,12 @@ async def test_notifications_keep_to_the_side_panel_over_real_pixels(config: Con
         await pilot.pause(0.3)
         toast = app.screen.query_one("ToastRack").query_one("Toast")
         assert toast.region.x >= app.query_one(Viewport).content_region.right
+
+
+async def test_with_real_pixels_the_side_panel_stays_for_the_notifications(config: Config):
+    app = BicepsApp(config, encoder=Numbered())
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        assert app.screen.query_one("#side").display  # narrow, but the toasts need its room
+        await pilot.press("h")
+        assert not app.screen.query_one("#side").display  # unless asked

@@ -110,7 +110,10 @@ class MainScreen(Screen[None]):
 
     def _place_panel(self) -> None:
         wanted = self._panel_wanted
-        shown = self.size.width >= NARROW if wanted is None else wanted
+        # With real pixels the notifications keep to the panel's room (an image painted
+        # over the picture would hide them), so it does not fold away by itself.
+        shown = self.size.width >= NARROW or self.has_class("-pixels") if wanted is None \
+            else wanted
         if not shown and self.focused is not None and self.query_one("#side") in (
             self.focused.ancestors
         ):
