@@ -48,7 +48,7 @@ async def test_typing_a_radius_changes_that_node_and_the_picture_follows(biceps)
         assert muscle.growth[7] == 2.05
         assert app.unsaved
         await session.settle()
-        assert "2.500" in str(app.screen.query_one(NodeTable).get_row_at(7))
+        assert app.screen.query_one(NodeTable).row(7)[2] == "2.500"
 
 
 async def test_growth_is_edited_in_the_same_dialog(biceps):
@@ -171,15 +171,6 @@ async def test_the_range_shown_and_a_held_stretch_stop_where_a_node_thins_to_not
             "would fall to zero"]
 
 
-async def test_end_and_home_pick_the_last_and_the_first_node(biceps):
-    async with biceps() as session:
-        table = session.app.screen.query_one(NodeTable)
-        await session.pilot.press("tab", "end")
-        assert table.cursor_row == 14
-        await session.pilot.press("home")
-        assert table.cursor_row == 0
-
-
 async def test_the_numbers_say_what_the_volume_is_and_how_closely_it_is_kept(biceps):
     async with biceps() as session:
         stats = session.app.screen.query_one(Stats)
@@ -234,3 +225,25 @@ async def test_the_numbers_fit_their_panel_at_either_end_of_the_radii(biceps, ra
         assert session.app.scene.arm.muscle.radii[7] == float(radius)
         lines = _text(stats.content).splitlines()
         assert max(len(line.rstrip()) for line in lines) <= stats.content_size.width
+
+
+@pytest.mark.parametrize("keys, row", [(["end"], 14), (["end", "home"], 0), (["pagedown"], 10),
+                                       (["end", "pageup"], 4), (["up"], 0), (["end", "down"], 14)])
+async def test_the_cursor_pages_and_jumps_and_stops_at_the_ends(biceps, keys, row):
+    async with biceps(size=(100, 24)) as session:  # 10 rows of nodes in view
+        table = session.app.screen.query_one(NodeTable)
+        await session.pilot.press("tab", *keys)
+        assert table.cursor_row == row
+
+
+async def test_thousands_of_nodes_show_the_rows_in_view_as_they_change(biceps, tmp_path):
+    path = tmp_path / "fine.toml"
+    radius = ", ".join(["2.0"] * 5000)
+    path.write_text(f"[muscle]\nlength = 33.0\nradius = [{radius}]\ngrowth = [{radius}]\n")
+    async with biceps(on=load_config(path)) as session:
+        table = session.app.screen.query_one(NodeTable)
+        await session.pilot.press("tab", "end", "c")
+        muscle = session.app.scene.arm.muscle
+        assert table.border_title == "nodes (5,000)"
+        assert table.row(4999) == ("5000", "32.90", f"{muscle.radii[4999]:.3f}", "2.000")
+        assert table.scroll_y == table.max_scroll_y  # the last row is in view
