@@ -150,3 +150,25 @@ async def test_a_range_limited_by_the_config_is_offered_whole_and_accepted(bicep
         await _recorded(session)
         assert session.warnings == []
     assert len(decoded(tmp_path / "limited.apng")) == 60
+
+
+async def test_recording_over_a_file_asks_every_time_and_escape_goes_back(biceps, tmp_path):
+    from biceps.tui.screens.choice import Choice
+
+    path = tmp_path / "cycle.gif"
+    path.write_bytes(b"keep me")
+    async with biceps() as session:
+        await _record(session, path, size="64x36", frames="4")
+        assert isinstance(session.app.screen, Choice)
+        await session.pilot.press("escape")
+        assert isinstance(session.app.screen, RecordPrompt)  # back, with what was typed
+        assert session.app.screen.query(Input).first().value == str(path)
+        await session.pilot.press("escape")
+        assert path.read_bytes() == b"keep me"
+        await _record(session, path, size="64x36", frames="4")
+        await session.pilot.press("y")
+        await _recorded(session)
+        await _record(session, path, size="64x36", frames="4")  # the same file again
+        assert isinstance(session.app.screen, Choice)
+        await session.pilot.press("escape", "escape")
+    assert path.read_bytes() != b"keep me"
