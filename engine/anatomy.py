@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from biceps.engine.bones import bone_meshes, bone_spheres
-from biceps.engine.clearance import RINGS_PER_SEGMENT, section_offsets
+from biceps.engine.clearance import section_offsets, sections_per_segment
 from biceps.engine.mesh import Mesh, muscle_mesh
 
 if TYPE_CHECKING:
@@ -26,7 +26,7 @@ def arm_parts(arm: Arm, segments: int) -> dict[str, Mesh]:
     pose, skeleton, muscle = arm.pose, arm.skeleton, arm.muscle
     centres, radii = bone_spheres(skeleton, pose)
     offsets = section_offsets(pose.origin, pose.insertion, muscle.radii, centres, radii,
-                              RINGS_PER_SEGMENT)
+                              sections_per_segment(muscle.node_count))
     body = muscle_mesh(muscle.radii, arm.length, pose.origin, pose.insertion, segments,
                        offsets=offsets)
     return {"muscle": body, **bone_meshes(skeleton, pose, segments)}

@@ -23,7 +23,11 @@ from __future__ import annotations
 import numpy as np
 
 RINGS_PER_SEGMENT = 4
-"""Sections drawn per segment between two nodes, so the moves bend smoothly."""
+"""Sections drawn per segment between two nodes, so the moves bend smoothly..."""
+MOST_SECTIONS = 1024
+"""...while that makes no more than this many: a muscle of thousands of nodes has sections
+enough in its nodes alone, and one of 16,384 would otherwise have 65,533."""
+_BLOCK = 4096  # sections tested against the spheres at a time: (block, spheres) arrays
 
 GAP = 0.1  # cm kept between muscle and bone
 SLOPE = 0.7  # the most a section moves per cm along the muscle
@@ -58,15 +62,33 @@ def section_offsets(start, end, radii, centres, sphere_radii,
     shift = _least_shifts(start + np.outer(along, axis), radius, axis, side, centres,
                           sphere_radii)
     shift[(along < HOLD) | (along > length - HOLD)] = 0.0
-    # The least smooth profile above the needs: each need spreads down both ways at SLOPE.
-    smooth = np.max(shift[None, :] - SLOPE * np.abs(along[:, None] - along[None, :]), axis=1)
+    # The least smooth profile above the needs: each need spreads down both ways at SLOPE,
+    # max_j (shift_j - SLOPE |a_i - a_j|), the larger of a running maximum from each end
+    # (an m x m array of every pair would take 34 GB at 16,384 nodes).
+    rising = np.maximum.accumulate(shift + SLOPE * along) - SLOPE * along
+    falling = (np.maximum.accumulate((shift - SLOPE * along)[::-1]) + SLOPE * along[::-1])[::-1]
+    smooth = np.maximum(rising, falling)
     smooth[[0, -1]] = 0.0  # the attachments themselves stay on the bone
     return np.outer(smooth, side)
+
+
+def sections_per_segment(nodes: int) -> int:
+    """:data:`RINGS_PER_SEGMENT`, or fewer (one at least) for a muscle of many nodes, so
+    that it has at most :data:`MOST_SECTIONS` sections if it can."""
+    return max(1, min(RINGS_PER_SEGMENT, (MOST_SECTIONS - 1) // max(nodes - 1, 1)))
 
 
 def _least_shifts(points, radius, axis, side, centres, sphere_radii) -> np.ndarray:
     """For each section (points (m, 3), radius (m,)), the least move s >= 0 along ``side``
     that clears every sphere's circle in the section's plane: (m,)."""
+    return np.concatenate([
+        _block_shifts(points[first:first + _BLOCK], radius[first:first + _BLOCK], axis, side,
+                      centres, sphere_radii)
+        for first in range(0, len(points), _BLOCK)
+    ])
+
+
+def _block_shifts(points, radius, axis, side, centres, sphere_radii) -> np.ndarray:
     offsets = centres[None, :, :] - points[:, None, :]  # (m, k, 3)
     height = offsets @ axis  # each sphere's centre above the section's plane
     cut = np.sqrt(np.maximum(sphere_radii[None, :] ** 2 - height**2, 0.0))
