@@ -113,8 +113,9 @@ def most_nodes() -> int:
 
 SLOW_NODES = 5_000
 """Nodes beyond which the picture follows a change of length slowly: each change rebuilds a
-mesh of that many rings (about 0.1 s a frame at 7,000 nodes, 0.3 s at 14,000, on the
-machine benchmarks/big_model.py was run on); the numbers and the table stay quick."""
+mesh of that many rings, lying on the bones (0.17 s a frame at 3,585 nodes, 0.3 s at 7,169,
+0.6 s at 14,337, at 172x68 pixels on two shared cores); the numbers and the table stay
+quick."""
 
 
 def with_node(muscle: Muscle, index: int, radius: float, growth: float) -> Muscle:

@@ -162,7 +162,7 @@ async def test_the_range_shown_and_a_held_stretch_stop_where_a_node_thins_to_not
     async with biceps(on=load_config(BUNDLED / "toy.toml")) as session:
         await _edit(session, 1, radius="0.2", growth="5")
         await session.settle()
-        assert "6.23 to 10.63" in _text(session.app.screen.query_one(Stats).content)
+        assert "6.16 to 10.63" in _text(session.app.screen.query_one(Stats).content)
         await session.pilot.press("X", "X", "X")
         arm = session.app.scene.arm
         assert f"{arm.length:.2f}" == "10.63"
@@ -174,13 +174,13 @@ async def test_the_range_shown_and_a_held_stretch_stop_where_a_node_thins_to_not
 async def test_the_numbers_say_what_the_volume_is_and_how_closely_it_is_kept(biceps):
     async with biceps() as session:
         stats = session.app.screen.query_one(Stats)
-        lines = _text(stats.content).splitlines()
-        assert "volume     198.879 cm³" in lines[3]
-        assert lines[4].split() == ["with", "both", "end", "caps"]
-        assert lines[5].split() == ["kept", "to", "exactly"]
+        lines = [line.split() for line in _text(stats.content).splitlines()]
+        volume = lines.index(["volume", "198.879", "cm³"])
+        assert lines[volume + 1] == ["with", "both", "end", "caps"]
+        assert lines[volume + 2] == ["kept", "to", "exactly"]
         await session.pilot.press("c")
-        kept = _text(stats.content).splitlines()[5]
-        assert re.fullmatch(r"\s*kept to\s+1 part in \de1[2-9]\s*", kept), kept
+        kept = " ".join(_text(stats.content).splitlines()[volume + 2].split())
+        assert re.fullmatch(r"kept to 1 part in \de1[2-9]", kept), kept
 
 
 @pytest.mark.parametrize(("radius", "growth", "complaint"), [
@@ -227,10 +227,10 @@ async def test_the_numbers_fit_their_panel_at_either_end_of_the_radii(biceps, ra
         assert max(len(line.rstrip()) for line in lines) <= stats.content_size.width
 
 
-@pytest.mark.parametrize("keys, row", [(["end"], 14), (["end", "home"], 0), (["pagedown"], 10),
-                                       (["end", "pageup"], 4), (["up"], 0), (["end", "down"], 14)])
+@pytest.mark.parametrize("keys, row", [(["end"], 14), (["end", "home"], 0), (["pagedown"], 9),
+                                       (["end", "pageup"], 5), (["up"], 0), (["end", "down"], 14)])
 async def test_the_cursor_pages_and_jumps_and_stops_at_the_ends(biceps, keys, row):
-    async with biceps(size=(100, 24)) as session:  # 10 rows of nodes in view
+    async with biceps(size=(100, 24)) as session:  # 9 rows of nodes in view
         table = session.app.screen.query_one(NodeTable)
         await session.pilot.press("tab", *keys)
         assert table.cursor_row == row
