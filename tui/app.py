@@ -436,7 +436,7 @@ class BicepsApp(App[None]):
                               markup=False)
 
     def action_toggle_plots(self) -> None:
-        self.screen_stack[0].query_one(Plots).toggle_class("-shown")
+        self.screen_stack[0].query_one(Plots).toggle()
 
     @work
     async def action_record(self) -> None:

@@ -6,6 +6,7 @@ from textual_plotext import PlotextPlot
 
 from biceps.engine.config import load_config
 from biceps.engine.sweep import flexion_range
+from biceps.engine.sweep import sweep as sweep_of_engine
 from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.viewport import Viewport
 
@@ -105,3 +106,20 @@ async def test_limits_that_leave_one_length_plot_one_point(biceps, config_path):
         curves, marks, _ = _lines(session, "curves")
         assert curves[LENGTH] == ([session.app.scene.arm.flexion], [30.0])
         assert any("shortest" in warning for warning in session.warnings)
+
+
+async def test_hidden_plots_cost_nothing_and_show_the_latest_arm_when_opened(biceps,
+                                                                              monkeypatch):
+    swept = []
+
+    def counting(arm, flexions):
+        swept.append(arm)
+        return sweep_of_engine(arm, flexions)
+
+    monkeypatch.setattr("biceps.tui.widgets.plots.sweep", counting)
+    async with biceps() as session:
+        await session.pilot.press("tab", "n", "C")  # an edit and a contraction, plots hidden
+        await session.settle()
+        assert swept == []
+        await session.pilot.press("p")
+        assert swept[-1].muscle.node_count == 16  # drawn for the arm as it now is
