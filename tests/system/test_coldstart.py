@@ -39,7 +39,7 @@ for shading, ssaa in (("gouraud", 1), ("phong", 1), ("overdraw", 1), ("gouraud",
     Renderer().prepare(shading, ssaa)
     before = {name: set(kernel.signatures) for name, kernel in kernels.items()}
     scene = Scene.of(load_config(sys.argv[1])).with_render(shading=shading, ssaa=ssaa)
-    SceneRenderer().render(scene, 64, 48)
+    SceneRenderer().render(scene, 64, 128)  # taller than a small picture, drawn supersampled
     added[f"{shading} x{ssaa}"] = sorted(name for name, kernel in kernels.items()
                                          if set(kernel.signatures) != before[name])
 print(json.dumps(added))

@@ -10,6 +10,7 @@ from __future__ import annotations
 from importlib.resources import files
 
 from rich.markdown import Markdown
+from rich.theme import Theme
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.screen import ModalScreen
@@ -28,4 +29,12 @@ class HelpScreen(ModalScreen[None]):
         yield log
 
     def on_mount(self) -> None:
-        self.query_one(RichLog).write(Markdown(HELP))  # as wide as the log, once laid out
+        self.call_after_refresh(self._write)  # once laid out: as wide as the log
+
+    def _write(self) -> None:
+        # Headings in the theme's accent, as Textual's own Markdown has them, rather than
+        # Rich's magenta: a terminal's magenta may be the muscle's red.
+        accent = self.app.current_theme.accent or self.app.current_theme.primary
+        headings = Theme({f"markdown.h{level}": f"bold {accent}" for level in (1, 2, 3)})
+        with self.app.console.use_theme(headings):
+            self.query_one(RichLog).write(Markdown(HELP))
