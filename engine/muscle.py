@@ -33,7 +33,9 @@ _NEWTON_MAX_STEPS = 200
 def thinnest_radius() -> float:
     """The smallest radius (cm) the model takes: a stretch stops where a node thins to it.
 
-    The one bound on radii lives with the configuration's bounds; this reads it.
+    The lower bound the shared bounds give a radius (engine/bounds.py, from the hardening
+    issue), so that a file, a dialog and a stretch agree: to be read from there once it is
+    on main.
     """
     return 1e-6
 
@@ -80,7 +82,6 @@ class _VolumeLaw:
     c: float
     ends: tuple[tuple[float, float], ...]  # (radius, growth) of each capped end; none if frusta
     lowest_step: float  # the step at which the first radius with growth reaches zero
-    first_to_vanish: int  # the index of that node
     thinnest_step: float  # the step at which the first radius with growth thins to the bound
     first_to_thin: int  # the index of that node
 
@@ -105,11 +106,11 @@ class _VolumeLaw:
 
         # A hair above the bound, so that rounding in the solve cannot take it below.
         limits, thinnest = reaching(0.0), reaching(thinnest_radius() * (1.0 + 1e-6))
-        first, thin = int(np.argmax(limits)), int(np.argmax(thinnest))
+        thin = int(np.argmax(thinnest))
         # Plain floats: the solver evaluates these a few times per change, and numpy's
         # per-call overhead on two-element arrays would dominate it.
         ends = ((float(radii[0]), float(growth[0])), (float(radii[-1]), float(growth[-1])))
-        return cls(a, b, c, ends if closed else (), float(limits[first]), first,
+        return cls(a, b, c, ends if closed else (), float(limits.max()),
                    min(float(thinnest[thin]), 0.0), thin)
 
     def over_pi(self, step: float, dx: float) -> float:

@@ -30,10 +30,10 @@ FILL = 0.9
 
 
 SMALL_PICTURE = 120
-"""Pixel rows at or below which a picture is drawn 2 x 2 supersampled at least. At 80x24
-the bones are about a pixel thick: sampled once a pixel they fall between pixel centres
-and break into pieces, where four samples a pixel keep them whole; and a picture this
-small costs little four times over."""
+"""Pixel rows at or below which a picture is drawn 2 x 2 supersampled at least. In a small
+picture (80x24, or the arm zoomed out) the bones are about a pixel thick: sampled once a
+pixel they fall between pixel centres and break into pieces, where four samples a pixel
+keep them whole; and a picture this small costs little four times over."""
 
 
 def supersampling(render: RenderSettings, height: int) -> int:

@@ -98,8 +98,9 @@ def node_bounds() -> dict[str, tuple[float, float, str]]:
     """What a person may type for a node, ``{name: (lowest, highest, unit)}``: what the model
     computes and draws. A radius of 1e9 cm overflows the volume's arithmetic and the picture.
 
-    These are the configuration's own bounds (one set for both: the shared bounds module,
-    when it lands, gives them), and the smallest radius a stretch stops at.
+    These are the bounds the shared bounds module (engine/bounds.py, from the hardening
+    issue) sets for a configuration's nodes, to be read from it once it is on main, so that
+    one set serves both; the lowest radius is the one a stretch stops at.
     """
     return {"radius": (thinnest_radius(), 1e4, " cm"), "growth": (0.0, 1e4, "")}
 
