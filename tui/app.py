@@ -229,7 +229,7 @@ class BicepsApp(App[None]):
         """Put ``arm`` in the scene as an edit that undo can take back; ``run`` for a length
         change, which joins the length changes just before it (see tui/history.py)."""
         before = self.scene.arm
-        if arm is before:
+        if arm == before:  # (a muscle compares by identity: the very same shape and length)
             return
         self._history.record(before, what, run=run, at=monotonic())
         self.scene = self.scene.with_arm(arm)

@@ -114,3 +114,13 @@ async def test_undo_and_redo_with_nothing_to_do_say_so(biceps, key):
         assert session.app.scene is before
         assert session.notes[-1].message.startswith("Nothing to")
         assert np.array_equal(before.arm.muscle.radii, session.app.scene.arm.muscle.radii)
+
+
+async def test_a_key_at_a_limit_is_no_step_to_undo(biceps):
+    async with biceps() as session:
+        await session.pilot.press(*["X"] * 4)  # to the straight arm, and against it
+        straight = session.app.scene.arm.length
+        await session.pilot.pause(RUN_GAP)
+        await session.pilot.press("X", "ctrl+z")
+        assert session.app.scene.arm.length == 33.0  # back past the run, not to itself
+        assert straight > 33.0
