@@ -27,7 +27,9 @@ from typing import TYPE_CHECKING, Any, Callable, Iterator, get_args
 import click
 
 from biceps.configs import DEFAULT as DEFAULT_CONFIG
+from biceps.engine.bounds import COORDINATE, SCALE, OutOfBounds, finite
 from biceps.engine.errors import BicepsError
+from biceps.engine.names import printable
 from biceps.engine.settings import Graphics
 
 if TYPE_CHECKING:
@@ -111,11 +113,13 @@ def _refusals_exit_2(command: Callable) -> Callable:
     return run
 
 
+# Plain paths: whether each is a file that can be read, or written, is for the engine to
+# say (engine/files.py), in its words, with the name made printable.
 config_argument = click.argument(
     "config",
     required=False,
     default=str(DEFAULT_CONFIG),
-    type=click.Path(dir_okay=False, path_type=Path),
+    type=click.Path(path_type=Path),
 )
 
 
@@ -216,12 +220,13 @@ def info(config: Path, length: float | None, flexion: float | None, as_json: boo
     arm = posed(load_config(config).arm, length, flexion)
     facts = describe(arm)
     if as_json:
-        click.echo(json.dumps(facts, indent=2))
+        # allow_nan=False: NaN and Infinity are not JSON (the engine's bounds keep them out).
+        click.echo(json.dumps(facts, indent=2, allow_nan=False))
         return
     low, high = facts["length_range_cm"]
     radii = " ".join(f"{r:.3f}" for r in facts["radii_cm"])
     click.echo(
-        f"{config}\n"
+        f"{printable(config)}\n"
         f"  length         {facts['length_cm']:.3f} cm (allowed {low:.2f} to {high:.2f})\n"
         f"  elbow flexion  {facts['flexion_deg']:.2f} degrees, "
         f"moment arm {facts['moment_arm_cm']:.3f} cm\n"
@@ -254,7 +259,7 @@ def sweep(config: Path, start: float | None, stop: float | None, step: float, fo
     start, stop = _or_the_whole_range(arm, start, stop)
     records = [row.record() for row in sweep_arm(arm, angles(start, stop, step))]
     if form == "json":
-        click.echo(json.dumps(records, indent=2))
+        click.echo(json.dumps(records, indent=2, allow_nan=False))
         return
     radii = len(records[0]["radii_cm"])
     columns = [name for name in records[0] if name != "radii_cm"]
@@ -313,9 +318,10 @@ def _parse_point(_ctx: Any, _param: Any, value: str | None) -> tuple[float, floa
         x, y, z = (float(part) for part in value.split(","))
     except ValueError:
         raise click.BadParameter(f"give X,Y,Z in cm, like 60,80,120; got {value!r}") from None
-    if not all(map(math.isfinite, (x, y, z))):
-        raise click.BadParameter(f"the coordinates must be finite numbers; got {value!r}")
-    return x, y, z
+    try:
+        return finite(x, COORDINATE), finite(y, COORDINATE), finite(z, COORDINATE)
+    except OutOfBounds as error:
+        raise click.BadParameter(f"each coordinate {error}") from None
 
 
 def view_options(command: Callable) -> Callable:
@@ -324,7 +330,7 @@ def view_options(command: Callable) -> Callable:
         click.option("--yaw", type=FINITE, help="Turn about the vertical axis, degrees."),
         click.option("--pitch", type=FINITE, help="Tilt about the horizontal axis, degrees."),
         click.option("--roll", type=FINITE, help="Roll about the line of sight, degrees."),
-        click.option("--scale", type=_FiniteFloat(0.01, 100), help="Zoom factor."),
+        click.option("--scale", type=_FiniteFloat(SCALE.low, SCALE.high), help="Zoom factor."),
         click.option("--light", callback=_parse_point, metavar="X,Y,Z",
                      help="Light position in world space, cm."),
         click.option("--ssaa", type=click.IntRange(1, 4), help="Supersampling factor, 1 to 4."),
@@ -356,7 +362,7 @@ PNG_SIZE = (1920, 1080)
 
 @main.command(short_help="Render CONFIG to a PNG file, or print it to this terminal.")
 @config_argument
-@click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
+@click.option("-o", "--output", type=click.Path(path_type=Path),
               help="The PNG file to write.")
 @click.option("--size", callback=_parse_size, metavar="WxH",
               help=f"Picture size in pixels (default {PNG_SIZE[0]}x{PNG_SIZE[1]}; printed, the "
@@ -421,12 +427,12 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
             f"{scene.render.ssaa} supersampling; try a smaller --size or --ssaa"
         ) from None
     write_png(output, frame)
-    click.echo(f"wrote {output} ({size[0]}x{size[1]})", err=True)
+    click.echo(f"wrote {printable(output)} ({size[0]}x{size[1]})", err=True)
 
 
 @main.command(short_help="Write the flex cycle as a GIF, APNG, WebP or MP4 animation.")
 @config_argument
-@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False, path_type=Path),
+@click.option("-o", "--output", required=True, type=click.Path(path_type=Path),
               help="The file to write: .gif, .apng, .webp or .mp4 (MP4 needs biceps[video]).")
 @click.option("--size", default="640x360", show_default=True, callback=_parse_size,
               metavar="WxH", help="Picture size in pixels.")
@@ -466,8 +472,8 @@ def animate(config: Path, output: Path, size: tuple[int, int], start: float | No
     except MemoryError:
         raise BicepsError(f"not enough memory for {frames} frames of {size[0]}x{size[1]}; "
                           "try fewer --frames, a smaller --size or --ssaa") from None
-    click.echo(f"wrote {output} ({size[0]}x{size[1]}, {frames} frames at {fps:g} a second)",
-               err=True)
+    click.echo(f"wrote {printable(output)} ({size[0]}x{size[1]}, {frames} frames at {fps:g} "
+               "a second)", err=True)
 
 
 @contextmanager
@@ -483,7 +489,7 @@ def _progress_bar(label: str, total: int) -> Iterator[Progress]:
 
 @main.command("export-mesh", short_help="Write the posed arm as a mesh: OBJ, STL, PLY or glTF.")
 @config_argument
-@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False, path_type=Path),
+@click.option("-o", "--output", required=True, type=click.Path(path_type=Path),
               help="The file to write: .obj, .stl, .ply or .glb.")
 @click.option("--segments", type=click.IntRange(3, 1024), help="Vertices around each axis.")
 @pose_options
@@ -499,7 +505,7 @@ def export_mesh(config: Path, output: Path, segments: int | None, length: float 
     arm = posed(loaded.arm, length, flexion)
     render = loaded.render
     write_mesh(output, arm, segments or render.segments, render.muscle_colour, render.bone_colour)
-    click.echo(f"wrote {output}", err=True)
+    click.echo(f"wrote {printable(output)}", err=True)
 
 
 OWN_PROCESS = "the biceps command's own process"

@@ -9,6 +9,7 @@ with ``tomlkit`` (comments and layout survive) and replaces the file atomically.
 
 from __future__ import annotations
 
+import codecs
 import difflib
 import os
 import re
@@ -18,21 +19,32 @@ from pathlib import Path
 from typing import Annotated, Any, Callable
 
 import tomlkit
-from pydantic import AllowInfNan, BaseModel, ConfigDict, Field, Strict, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, PlainValidator, ValidationError, model_validator
 
 from biceps.configs import DEFAULT as DEFAULT_CONFIG, FOLDER as BUNDLED
 from biceps.engine.arm import Arm
-from biceps.engine.errors import ConfigError, RefusedChange
-from biceps.engine.files import write_atomically
+from biceps.engine.bounds import (
+    BONE,
+    COORDINATE,
+    GROWTH,
+    RADIUS,
+    SCALE,
+    Limits,
+    OutOfBounds,
+    finite,
+    quoted,
+    whole,
+)
+from biceps.engine.errors import ConfigError, FileChanged, FileError, RefusedChange
+from biceps.engine.files import read_regular_file, write_atomically
 from biceps.engine.muscle import Muscle, VolumeMode
+from biceps.engine.names import printable
 from biceps.engine.settings import (
     COLOUR,
     FIELD_OF_VIEW,
-    SCALE,
     Graphics,
     SEGMENTS,
     SUPERSAMPLING,
-    Limits,
     RenderSettings,
     Shading,
     View,
@@ -40,18 +52,26 @@ from biceps.engine.settings import (
 from biceps.engine.skeleton import Skeleton, skeleton_problem
 from biceps.engine.transforms import FRACTION, SHININESS, Light
 
-# Strict numbers: "1.5" is not a number and true is not 1 (an int is still a fine float).
-Number = Annotated[float, Strict(), AllowInfNan(False)]
-Positive = Annotated[Number, Field(gt=0)]
-NonNegative = Annotated[Number, Field(ge=0)]
-Degrees = Annotated[Number, Field(ge=0, le=180)]
-Vector = tuple[Number, Number, Number]
+
+def _number(limits: Limits | None = None) -> Any:
+    # The runtime values' own rule (engine/bounds.py), so that a file and a dialog refuse
+    # the same numbers in the same words. Strict: "1.5" is not a number and true is not 1.
+    return PlainValidator(lambda value: finite(value, limits))
+
+
+def _whole(limits: Limits) -> Any:
+    return PlainValidator(lambda value: whole(value, limits))
+
+
+Number = Annotated[float, _number()]
+Positive = Annotated[float, _number(Limits(0, exclusive=True, unit=" cm"))]
+Degrees = Annotated[float, _number(Limits(0, 180, unit=" degrees"))]
+Radius = Annotated[float, _number(RADIUS)]
+Growth = Annotated[float, _number(GROWTH)]
+Bone = Annotated[float, _number(BONE)]
+Coordinate = Annotated[float, _number(COORDINATE)]
+Vector = tuple[Coordinate, Coordinate, Coordinate]
 Colour = Annotated[str, Field(pattern=f"^{COLOUR}$")]
-
-
-def _within(limits: Limits) -> Any:
-    # The runtime settings' own bounds, so that the file and the values agree.
-    return Field(**limits.constraints())
 
 
 class _Table(BaseModel):
@@ -67,9 +87,9 @@ class MuscleTable(_Table):
     pose_flexion: Degrees | None = None
     min_length: Positive | None = None
     max_length: Positive | None = None
-    nodes: list[tuple[Positive, NonNegative]] | None = None
-    radius: list[Positive] | None = None
-    growth: list[NonNegative] | None = None
+    nodes: list[tuple[Radius, Growth]] | None = None
+    radius: list[Radius] | None = None
+    growth: list[Growth] | None = None
 
     @model_validator(mode="after")
     def _one_way_each(self) -> MuscleTable:
@@ -106,14 +126,14 @@ class SkeletonTable(_Table):
     """The arm's bones and the muscle's attachments, as in :class:`Skeleton`, whose defaults
     these are; the joint's range as one pair."""
 
-    upper_arm: Positive = Skeleton.upper_arm
-    origin_to_elbow: Positive = Skeleton.origin_to_elbow
-    origin_forward: Number = Skeleton.origin_forward
-    origin_lateral: Number = Skeleton.origin_lateral
-    elbow_to_insertion: Positive = Skeleton.elbow_to_insertion
-    insertion_forward: Number = Skeleton.insertion_forward
-    insertion_lateral: Number = Skeleton.insertion_lateral
-    forearm: Positive = Skeleton.forearm
+    upper_arm: Bone = Skeleton.upper_arm
+    origin_to_elbow: Bone = Skeleton.origin_to_elbow
+    origin_forward: Coordinate = Skeleton.origin_forward
+    origin_lateral: Coordinate = Skeleton.origin_lateral
+    elbow_to_insertion: Bone = Skeleton.elbow_to_insertion
+    insertion_forward: Coordinate = Skeleton.insertion_forward
+    insertion_lateral: Coordinate = Skeleton.insertion_lateral
+    forearm: Bone = Skeleton.forearm
     flexion_range: tuple[Degrees, Degrees] = (Skeleton.min_flexion, Skeleton.max_flexion)
 
     @classmethod
@@ -134,9 +154,9 @@ class ViewTable(_Table):
     yaw: Number = View.yaw
     pitch: Number = View.pitch
     roll: Number = View.roll
-    scale: Annotated[Number, _within(SCALE)] = View.scale
+    scale: Annotated[float, _number(SCALE)] = View.scale
     offset: Vector = View.offset
-    fov: Annotated[Number, _within(FIELD_OF_VIEW)] = View.fov
+    fov: Annotated[float, _number(FIELD_OF_VIEW)] = View.fov
 
     @classmethod
     def of(cls, view: View) -> ViewTable:
@@ -151,10 +171,10 @@ class LightTable(_Table):
     :class:`Light`, whose defaults and bounds these are."""
 
     position: Vector = Light.position
-    ambient: Annotated[Number, _within(FRACTION)] = Light.ambient
-    diffuse: Annotated[Number, _within(FRACTION)] = Light.diffuse
-    specular: Annotated[Number, _within(FRACTION)] = Light.specular
-    shininess: Annotated[Number, _within(SHININESS)] = Light.shininess
+    ambient: Annotated[float, _number(FRACTION)] = Light.ambient
+    diffuse: Annotated[float, _number(FRACTION)] = Light.diffuse
+    specular: Annotated[float, _number(FRACTION)] = Light.specular
+    shininess: Annotated[float, _number(SHININESS)] = Light.shininess
 
     @classmethod
     def of(cls, light: Light) -> LightTable:
@@ -168,9 +188,9 @@ class RenderTable(_Table):
     """How the picture is drawn, as in :class:`RenderSettings`, whose defaults and bounds
     these are."""
 
-    segments: Annotated[int, Strict(), _within(SEGMENTS)] = RenderSettings.segments
+    segments: Annotated[int, _whole(SEGMENTS)] = RenderSettings.segments
     shading: Shading = RenderSettings.shading
-    ssaa: Annotated[int, Strict(), _within(SUPERSAMPLING)] = RenderSettings.ssaa
+    ssaa: Annotated[int, _whole(SUPERSAMPLING)] = RenderSettings.ssaa
     muscle_colour: Colour = RenderSettings.muscle_colour
     tendon_colour: Colour = RenderSettings.tendon_colour
     bone_colour: Colour = RenderSettings.bone_colour
@@ -210,18 +230,32 @@ class Config:
     source: str
 
 
+LARGEST_FILE = 4 << 20
+"""Bytes a configuration may have: ten times what the most nodes a muscle may have take."""
+
+DEEPEST = 64
+"""Arrays and tables nested deeper than this are refused before they are parsed (the
+deepest a configuration needs is 2, ``nodes = [[radius, growth], ...]``): tomllib parses
+them by recursion, and a few thousand levels exhaust Python's stack."""
+
+
 def load_config(path: str | os.PathLike) -> Config:
-    """Read and validate a configuration file; raises :class:`ConfigError` saying why not."""
+    """Read and validate a configuration file; raises :class:`ConfigError` (or
+    :class:`FileError`, for a file that cannot be read) saying why not."""
     path = Path(path)
     return _parsed(path, _read_text(path))
 
 
 def _parsed(path: Path, source: str) -> Config:
     """The configuration that ``source``, read from ``path``, describes."""
+    _check_nesting(path, source)
     try:
         data = tomllib.loads(source)
     except tomllib.TOMLDecodeError as error:
-        raise ConfigError(f"{path}: not valid TOML: {error}") from None
+        raise ConfigError(f"{printable(path)}: not valid TOML: {printable(str(error))}") from None
+    except RecursionError:  # nesting that the check above did not see as such
+        raise ConfigError(f"{printable(path)}: arrays or tables nested too deep to read; a "
+                          "configuration needs at most 2 levels") from None
     try:
         table = ConfigFile.model_validate(data)
     except ValidationError as error:
@@ -232,21 +266,45 @@ def _parsed(path: Path, source: str) -> Config:
 
 
 def _read_text(path: Path) -> str:
-    try:
-        raw = path.read_bytes()
-    except FileNotFoundError:
-        raise ConfigError(f"{path}: no such file") from None
-    except IsADirectoryError:
-        raise ConfigError(f"{path}: is a directory, not a configuration file") from None
-    except OSError as error:
-        raise ConfigError(f"{path}: cannot be read: {error.strerror}") from None
+    raw = read_regular_file(path, LARGEST_FILE)
+    if raw.startswith(codecs.BOM_UTF8):
+        raise ConfigError(
+            f"{printable(path)}: starts with a byte-order mark (bytes EF BB BF), which TOML "
+            "does not allow: save it as UTF-8 without a byte-order mark"
+        )
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as error:
         raise ConfigError(
-            f"{path}: not a text file (byte {error.start} is not UTF-8); "
+            f"{printable(path)}: not a text file (byte {error.start} is not UTF-8); "
             "a configuration is a TOML text file"
         ) from None
+
+
+def _check_nesting(path: Path, source: str) -> None:
+    """Refuse arrays and tables nested deeper than :data:`DEEPEST`, naming where."""
+    if source.count("[") + source.count("{") <= DEEPEST:
+        return  # too few brackets to nest that deep: the common case, at no cost
+    depth = 0
+    for match in _NESTING.finditer(source):
+        bracket = match.group()
+        if bracket in "[{":
+            depth += 1
+            if depth > DEEPEST:
+                line = source.count("\n", 0, match.start()) + 1
+                key = _key_before(source, line)
+                field = f"{key}: " if key else ""
+                raise ConfigError(
+                    f"{printable(path)}:{line}: {field}arrays or tables nested more than "
+                    f"{DEEPEST} deep; a configuration needs at most 2 (nodes = [[radius, "
+                    "growth], ...])"
+                )
+        elif bracket in "]}":
+            depth = max(depth - 1, 0)
+
+
+# Brackets outside strings and comments: strings and comments are matched whole and skipped.
+_NESTING = re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*|[\[\]{}]')
 
 
 def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
@@ -316,27 +374,41 @@ def _check_reach(arm: Arm, length: float, key: str,
     return min(max(length, low), high)
 
 
+MOST_PROBLEMS = 5
+"""Problems a message lists; a file with thousands of bad nodes gets the first few and a count."""
+
+
 def _describe(path: Path, source: str, error: ValidationError, within: tuple = ()) -> str:
     """One line per problem: ``file:line: field.path: what is wrong (found ...)``; ``within``
     is the path of the table validated, when it is not the whole file."""
-    lines = []
-    for problem in error.errors(include_url=False):
-        location = (*within, *problem["loc"])
-        kind = problem["type"]
-        if kind == "extra_forbidden":
-            message = _unknown_key_message(location)
-        elif kind == "missing" and len(location) == 1:
-            message = f"the [{location[0]}] table is required, but missing"
-        elif kind == "missing":
-            message = "required, but missing"
-        elif kind == "string_pattern_mismatch":  # the only patterns are colours
-            message = f"should be a colour written #rrggbb (found {_shown(problem['input'])})"
-        else:
-            message = problem["msg"].removeprefix("Value error, ")
-            if kind != "value_error" and not isinstance(problem["input"], dict):
-                message += f" (found {_shown(problem['input'])})"
-        lines.append(_located(path, source, location, message))
+    problems = error.errors(include_url=False)
+    lines = [_located(path, source, (*within, *problem["loc"]), _problem(within, problem))
+             for problem in problems[:MOST_PROBLEMS]]
+    if len(problems) > MOST_PROBLEMS:
+        lines.append(f"{printable(path)}: and {len(problems) - MOST_PROBLEMS:,} more problems "
+                     "like these")
     return "\n".join(lines)
+
+
+def _problem(within: tuple, problem: dict) -> str:
+    location, kind, found = (*within, *problem["loc"]), problem["type"], problem["input"]
+    refusal = problem.get("ctx", {}).get("error")
+    if isinstance(refusal, OutOfBounds):
+        return f"must be {refusal.wanted} (found {printable(refusal.found)})"
+    if kind == "extra_forbidden":
+        return _unknown_key_message(location)
+    if kind == "missing" and len(location) == 1:
+        return f"the [{location[0]}] table is required, but missing"
+    if kind == "missing":
+        return "required, but missing"
+    if kind == "string_pattern_mismatch":  # the only patterns are colours
+        return f"should be a colour written #rrggbb (found {printable(quoted(found))})"
+    message = problem["msg"].removeprefix("Value error, ")
+    if kind == "value_error":
+        return message
+    if isinstance(found, dict):  # a table where a value belongs, as a dotted key makes
+        return f"{message} (found a table)"
+    return f"{message} (found {printable(quoted(found))})"
 
 
 def _unknown_key_message(location: tuple) -> str:
@@ -349,66 +421,88 @@ def _unknown_key_message(location: tuple) -> str:
         if model is None:
             break
     allowed = list(model.model_fields) if model is not None else []
-    message = f"unknown key {key!r}"
+    message = f"unknown key {printable(repr(key))}"
     close = difflib.get_close_matches(str(key), allowed, n=1)
     if close:
         message += f" (did you mean {close[0]!r}?)"
+    if parents and key in ConfigFile.model_fields:
+        message += f" ([{key}] is a table of its own: write its keys under a [{key}] header)"
     if allowed:
         message += f"; allowed here: {', '.join(allowed)}"
     return message
 
 
-def _shown(value: Any) -> str:
-    text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
-
-
 def _located(path: Path, source: str, location: tuple, message: str) -> str:
-    dotted = ".".join(str(part) for part in location if isinstance(part, str))
+    dotted = ".".join(printable(str(part)) for part in location if isinstance(part, str))
     for part in location:
         if isinstance(part, int):
             dotted += f"[{part}]"
     line = _line_of(source, location)
-    where = f"{path}:{line}" if line else str(path)
+    where = f"{printable(path)}:{line}" if line else printable(path)
     return f"{where}: {dotted}: {message}" if dotted else f"{where}: {message}"
 
 
-_TABLE_HEADER = re.compile(r"^\s*\[\s*([A-Za-z0-9_.\- ]+?)\s*\]")
+_TABLE_HEADER = re.compile(r"^\s*\[\[?\s*([^\]#]+?)\s*\]")
+_ASSIGNMENT = re.compile(r"^\s*([A-Za-z0-9_\-.\"' ]+?)\s*=")
+
+
+def _keys_by_line(source: str):
+    """Each table header and each assignment of ``source``: (line, the full dotted path of
+    what it names, as a tuple of keys), dotted keys and quoted keys taken apart."""
+    table: tuple[str, ...] = ()
+    for number, line in enumerate(source.splitlines(), start=1):
+        header = _TABLE_HEADER.match(line)
+        if header:
+            table = _dotted(header.group(1))
+            yield number, table
+            continue
+        assignment = _ASSIGNMENT.match(line)
+        if assignment:
+            yield number, table + _dotted(assignment.group(1))
+
+
+def _dotted(key: str) -> tuple[str, ...]:
+    return tuple(part.strip().strip("\"'") for part in key.split("."))
 
 
 def _line_of(source: str, location: tuple) -> int | None:
     """The 1-based line where the key at ``location`` is written, when it can be found.
 
-    pydantic knows field paths but not TOML lines, so this finds ``key =`` under the right
-    ``[table]`` header (or the header itself); good enough for the layouts people write.
+    pydantic knows field paths but not TOML lines, so this finds the header or assignment
+    that names the key, or a dotted key inside it (``nodes.x = 1`` makes ``nodes`` a
+    table); good enough for the layouts people write.
     """
-    keys = [part for part in location if isinstance(part, str)]
+    keys = tuple(part for part in location if isinstance(part, str))
     if not keys:
         return None
-    table, key = ".".join(keys[:-1]), keys[-1]
-    current = ""
-    assignment = re.compile(rf"^\s*{re.escape(key)}\s*=")
-    for number, line in enumerate(source.splitlines(), start=1):
-        header = _TABLE_HEADER.match(line)
-        if header:
-            current = header.group(1).replace(" ", "")
-            if current == ".".join(keys):
-                return number
-        elif current == table and assignment.match(line):
+    for number, path in _keys_by_line(source):
+        if path[:len(keys)] == keys:
             return number
     return None
 
 
+def _key_before(source: str, line: int) -> str:
+    """The dotted key last assigned (or table opened) at or before ``line``."""
+    named = ""
+    for number, path in _keys_by_line(source):
+        if number > line:
+            break
+        named = ".".join(printable(part) for part in path)
+    return named
+
+
 def save_config(config: Config, arm: Arm, view: View, light: Light, render: RenderSettings,
-                path: str | os.PathLike | None = None) -> Config:
+                path: str | os.PathLike | None = None, *, overwrite: bool = False) -> Config:
     """Write ``arm`` and the settings into ``config``'s document and replace the file atomically.
 
     Only values that differ from what the file says (or implies by default) are written, so
     the user's comments, order and layout survive. ``path`` saves a copy elsewhere ("save
     as"). The new text is read back as :func:`load_config` would read it before anything is
-    written, so a save never leaves a file that does not load. Returns the configuration as
-    now on disk; raises :class:`ConfigError` (the new text would not load) or
-    :class:`FileError` (it cannot be written) and then leaves every file as it was.
+    written, so a save never leaves a file that does not load. Saving over the file the
+    configuration was read from raises :class:`FileChanged` if someone changed that file
+    since, unless ``overwrite``. Returns the configuration as now on disk; raises
+    :class:`ConfigError` (the new text would not load) or :class:`FileError` (it cannot be
+    written) and then leaves every file as it was.
     """
     target = Path(path) if path is not None else config.path
     document = tomlkit.parse(config.source)
@@ -422,8 +516,25 @@ def save_config(config: Config, arm: Arm, view: View, light: Light, render: Rend
         saved = _parsed(target, text)
     except ConfigError as error:
         raise ConfigError(f"not saved (nothing was written): {error}") from None
+    if not overwrite and _same_file(target, config.path) and _changed_on_disk(config):
+        raise FileChanged(f"{printable(target)}: changed on disk since it was read; saving "
+                          "would lose those changes, so nothing was written")
     write_atomically(target, text.encode("utf-8"))
     return saved
+
+
+def _same_file(path: Path, other: Path) -> bool:
+    try:
+        return os.path.samefile(path, other)
+    except OSError:  # one of them is not there (yet)
+        return False
+
+
+def _changed_on_disk(config: Config) -> bool:
+    try:
+        return read_regular_file(config.path, LARGEST_FILE) != config.source.encode("utf-8")
+    except FileError:  # gone, or no longer a file: writing it will say what is wrong
+        return False
 
 
 def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm, before: Arm) -> None:

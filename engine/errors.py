@@ -18,7 +18,11 @@ class SettingError(BicepsError):
 
 
 class FileError(BicepsError):
-    """A file cannot be written; whatever was there before is untouched."""
+    """A file cannot be read or written; whatever was there before is untouched."""
+
+
+class FileChanged(FileError):
+    """The file was changed on disk since it was read: saving would lose those changes."""
 
 
 def shown(text: str) -> str:

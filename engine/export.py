@@ -13,8 +13,9 @@ from PIL import Image
 from biceps.engine.arm import Arm
 from biceps.engine.config import rgb
 from biceps.engine.errors import FileError, shown
-from biceps.engine.files import write_atomically
+from biceps.engine.files import check_name, write_atomically
 from biceps.engine.anatomy import arm_parts
+from biceps.engine.names import printable
 from biceps.engine.settings import RenderSettings
 
 # zlib level 1: within a few per cent of level 6's size on these pictures (a flat
@@ -48,16 +49,18 @@ def parse_size(text: str) -> tuple[int, int]:
 
 def check_writable(path: Path, *suffixes: str) -> None:
     """Raise :class:`FileError` now, before any work, if ``path`` cannot be the output."""
+    name = printable(path)
     if path.suffix.lower() not in suffixes:
         allowed = ", ".join(suffixes)
-        raise FileError(f"{path}: the name must end in {allowed}")
+        raise FileError(f"{name}: the name must end in {allowed}")
+    check_name(path)
     if path.is_dir():
-        raise FileError(f"{path}: is a directory")
+        raise FileError(f"{name}: is a directory")
     parent = path.parent
     if not parent.is_dir():
-        raise FileError(f"{path}: there is no directory {parent}")
+        raise FileError(f"{name}: there is no directory {printable(parent)}")
     if not os.access(parent, os.W_OK):
-        raise FileError(f"{path}: the directory {parent} is not writable")
+        raise FileError(f"{name}: the directory {printable(parent)} is not writable")
 
 
 def png_bytes(frame: np.ndarray) -> bytes:

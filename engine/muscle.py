@@ -22,12 +22,16 @@ from typing import Literal
 
 import numpy as np
 
+from biceps.engine.bounds import GROWING, GROWTH, NODES, RADIUS, Limits, OutOfBounds, finite
 from biceps.engine.errors import RefusedChange
 
 VolumeMode = Literal["closed", "frusta"]
 VOLUME_MODES: tuple[VolumeMode, ...] = ("closed", "frusta")
 
 _NEWTON_MAX_STEPS = 200
+
+VOLUME_TOLERANCE = 1e-12
+"""The largest relative volume error a length change may leave (SPEC 2.2)."""
 
 
 def thinnest_radius() -> float:
@@ -293,7 +297,16 @@ class Muscle:
         if radii.min() <= 0:
             raise RefusedChange(self._too_long_message(length))
         radii.flags.writeable = False
-        return Muscle(self.rest, length, radii, step)
+        muscle = Muscle(self.rest, length, radii, step)
+        if not muscle.volume_error <= VOLUME_TOLERANCE:
+            # Near the length at which a radius vanishes, the step is the difference of
+            # nearly equal terms and loses digits: say so rather than show a wrong volume.
+            raise RefusedChange(
+                f"cannot reach {length:.2f} cm at constant volume: so close to node "
+                f"{self.rest.law.first_to_vanish + 1}'s vanishing the volume cannot be kept "
+                f"to {VOLUME_TOLERANCE:g} (it would be off by {muscle.volume_error:.1e})"
+            )
+        return muscle
 
     def _too_long_message(self, length: float) -> str:
         return (
@@ -348,6 +361,10 @@ class Muscle:
         shape and the volume are unchanged.
         """
         count = 2 * self.node_count - 1
+        if count > NODES:
+            raise RefusedChange(
+                f"subdividing would make {count:,} nodes; a muscle has at most {NODES:,}"
+            )
         radii = np.empty(count)
         growth = np.empty(count)
         radii[0::2], growth[0::2] = self.radii, self.growth
@@ -372,30 +389,33 @@ def _check_profile(
 ) -> None:
     if radii.ndim != 1 or len(radii) < 2:
         raise RefusedChange(f"a muscle needs at least 2 nodes, got {radii.size}")
+    if len(radii) > NODES:
+        raise RefusedChange(f"a muscle has at most {NODES:,} nodes, not {len(radii):,}")
     if growth.shape != radii.shape:
         raise RefusedChange(
             f"every node needs a radius and a growth: {len(radii)} radii, {growth.size} growths"
         )
-    for name, values in (("radius", radii), ("growth", growth)):
-        bad = np.flatnonzero(~np.isfinite(values))
-        if bad.size:
-            raise RefusedChange(f"node {bad[0] + 1}: {name} must be a number, got {values[bad[0]]}")
-    bad = np.flatnonzero(radii <= 0)
-    if bad.size:
+    for name, values, limits in (("radius", radii, RADIUS), ("growth", growth, GROWTH)):
+        bad = _outside(values, limits)
+        if bad is not None:
+            try:
+                finite(float(values[bad]), limits)
+            except OutOfBounds as error:
+                raise RefusedChange(f"node {bad + 1}: {name} {error}") from None
+    if not growth.max() >= GROWING:
         raise RefusedChange(
-            f"node {bad[0] + 1}: radius must be above 0 cm, got {radii[bad[0]]:g}"
-        )
-    bad = np.flatnonzero(growth < 0)
-    if bad.size:
-        raise RefusedChange(
-            f"node {bad[0] + 1}: growth must be 0 or more, got {growth[bad[0]]:g}"
-        )
-    if not np.any(growth > 0):
-        raise RefusedChange(
-            "at least one node needs a growth above 0, or the muscle cannot change length "
-            "at constant volume"
+            f"at least one node needs a growth of {GROWING:g} or more, or the muscle cannot "
+            f"change length at constant volume (the largest here is {growth.max():g})"
         )
     if not np.isfinite(length) or length <= 0:
         raise RefusedChange(f"length must be above 0 cm, got {length}")
     if volume_mode not in VOLUME_MODES:
         raise RefusedChange(f"volume mode must be 'closed' or 'frusta', got {volume_mode!r}")
+
+
+def _outside(values: np.ndarray, limits: Limits) -> int | None:
+    """The index of the first of ``values`` that ``limits`` refuses (NaN among them), if any."""
+    with np.errstate(invalid="ignore"):
+        inside = (values >= limits.low) & (values <= limits.high)
+    bad = np.flatnonzero(~inside)
+    return int(bad[0]) if bad.size else None

@@ -12,12 +12,11 @@ tables in ``engine/config.py`` take theirs from these, and convert to and from t
 
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass, fields
-from numbers import Integral, Real
 from typing import Any, Callable, Literal, get_args
 
+from biceps.engine.bounds import COORDINATE, SCALE, Limits, OutOfBounds, finite, quoted, whole
 from biceps.engine.errors import SettingError
 
 Shading = Literal["gouraud", "phong"]
@@ -36,35 +35,6 @@ COLOUR = "#[0-9a-fA-F]{6}"
 """A whole colour, ``#rrggbb``, as a regular expression."""
 
 
-@dataclass(frozen=True)
-class Limits:
-    """The numbers a setting allows: ``low`` or more, up to ``high`` if there is one; the
-    ends themselves excluded when ``exclusive``."""
-
-    low: float
-    high: float | None = None
-    exclusive: bool = False
-    unit: str = ""
-
-    def allows(self, value: float) -> bool:
-        if self.exclusive:
-            return value > self.low and (self.high is None or value < self.high)
-        return value >= self.low and (self.high is None or value <= self.high)
-
-    def constraints(self) -> dict[str, float]:
-        """The bounds named ``gt``, ``ge``, ``lt`` and ``le``, as pydantic's ``Field`` wants."""
-        above, below = ("gt", "lt") if self.exclusive else ("ge", "le")
-        return {above: self.low} if self.high is None else {above: self.low, below: self.high}
-
-    def __str__(self) -> str:
-        low, high, unit = self.low, self.high, self.unit
-        if high is None:
-            return f"above {low:g}{unit}" if self.exclusive else f"{low:g}{unit} or more"
-        if self.exclusive:
-            return f"above {low:g} and below {high:g}{unit}"
-        return f"from {low:g} to {high:g}{unit}"
-
-
 Rule = Callable[[str, Any], Any]
 """Checks the value of the field it is told the name of: returns the value to keep, or raises
 :class:`SettingError`."""
@@ -81,12 +51,12 @@ def settle(setting: Any, owner: str, **rules: Rule) -> None:
 
 def number(limits: Limits | None = None) -> Rule:
     """A finite number (a bool is not one) within ``limits``."""
-    wanted = f"a finite number {limits}" if limits is not None else "a finite number"
 
     def check(where: str, value: Any) -> float:
-        if not _is_finite_number(value) or (limits is not None and not limits.allows(value)):
-            raise _refused(where, value, wanted)
-        return float(value)
+        try:
+            return finite(value, limits)
+        except OutOfBounds as error:
+            raise _refused(where, value, error.wanted) from None
 
     return check
 
@@ -95,19 +65,22 @@ def integer(limits: Limits) -> Rule:
     """A whole number (not a bool, nor a float such as 2.0) within ``limits``."""
 
     def check(where: str, value: Any) -> int:
-        if not isinstance(value, Integral) or isinstance(value, bool) or not limits.allows(value):
-            raise _refused(where, value, f"a whole number {limits}")
-        return int(value)
+        try:
+            return whole(value, limits)
+        except OutOfBounds as error:
+            raise _refused(where, value, error.wanted) from None
 
     return check
 
 
 def point(where: str, value: Any) -> tuple[float, float, float]:
-    """Three finite numbers, x, y and z."""
-    if (not isinstance(value, (tuple, list)) or len(value) != 3
-            or not all(map(_is_finite_number, value))):
-        raise _refused(where, value, "three finite numbers (x, y, z)")
-    return tuple(float(v) for v in value)
+    """Three finite numbers, x, y and z, each within :data:`~engine.bounds.COORDINATE`."""
+    try:
+        if not isinstance(value, (tuple, list)) or len(value) != 3:
+            raise ValueError
+        return tuple(finite(v, COORDINATE) for v in value)
+    except ValueError:
+        raise _refused(where, value, COORDINATE.of("three finite numbers (x, y, z)")) from None
 
 
 def one_of(choices: tuple[str, ...]) -> Rule:
@@ -129,18 +102,10 @@ def colour(where: str, value: Any) -> str:
     return value
 
 
-def _is_finite_number(value: Any) -> bool:
-    return isinstance(value, Real) and not isinstance(value, bool) and math.isfinite(value)
-
-
 def _refused(where: str, value: Any, wanted: str) -> SettingError:
-    shown = repr(value)
-    if len(shown) > 60:
-        shown = shown[:57] + "..."
-    return SettingError(f"{where} is {shown}: it must be {wanted}")
+    return SettingError(f"{where} is {quoted(value)}: it must be {wanted}")
 
 
-SCALE = Limits(0, exclusive=True)
 FIELD_OF_VIEW = Limits(1, 170, exclusive=True, unit=" degrees")
 
 

@@ -36,6 +36,7 @@ from typing import Literal
 
 import numpy as np
 
+from biceps.engine.bounds import BONE, COORDINATE, OutOfBounds, finite
 from biceps.engine.errors import RefusedChange
 
 Bone = Literal["upper_arm", "forearm"]
@@ -199,14 +200,16 @@ OFFSETS = ("origin_forward", "origin_lateral", "insertion_forward", "insertion_l
 def skeleton_problem(skeleton: Skeleton) -> tuple[str, str] | None:
     """What is wrong with ``skeleton``, if anything: the field to blame (a key of the
     configuration's ``[skeleton]`` table) and a sentence saying why; None if it makes sense."""
-    for name in LENGTHS:
-        value = getattr(skeleton, name)
-        if not math.isfinite(value) or value <= 0:
-            return name, f"must be above 0 cm, got {value}"
-    for name in OFFSETS:
-        value = getattr(skeleton, name)
-        if not math.isfinite(value):
-            return name, f"must be a finite number of cm, got {value}"
+    for names, limits in ((LENGTHS, BONE), (OFFSETS, COORDINATE)):
+        for name in names:
+            try:
+                finite(getattr(skeleton, name), limits)
+            except OutOfBounds as error:
+                return name, str(error)
+    if skeleton.elbow_to_insertion > skeleton.forearm:
+        return "elbow_to_insertion", (
+            f"must be at most the forearm's length, {skeleton.forearm:g} cm, not "
+            f"{skeleton.elbow_to_insertion:g}: the muscle inserts on the forearm")
     low, high = skeleton.min_flexion, skeleton.max_flexion
     if not 0.0 <= low < high <= 180.0:
         return "flexion_range", (f"flexion range must satisfy 0 <= min_flexion < max_flexion "

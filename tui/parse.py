@@ -8,7 +8,9 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from biceps.engine.errors import shown
+from biceps.engine.errors import FileError, shown
+from biceps.engine.files import check_name
+from biceps.engine.names import printable
 
 
 def parse_number(text: str) -> float:
@@ -30,6 +32,10 @@ def parse_path(text: str) -> Path:
     if not text:
         raise ValueError("give a file name")
     path = Path(text).expanduser()
+    try:
+        check_name(path)
+    except FileError as error:
+        raise ValueError(str(error)) from None
     if path.is_dir():
-        raise ValueError(f"{path} is a directory: give a file name")
+        raise ValueError(f"{printable(path)} is a directory: give a file name")
     return path

@@ -1,4 +1,4 @@
-"""Configuration files: the bundled ones load, bad ones are refused clearly, saving is safe."""
+"""Configuration files: the bundled ones load, saving is safe (bad files: tests/cli/test_invalid_configs.py)."""
 
 import math
 import stat
@@ -7,68 +7,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 
-from biceps.cli import main
 from biceps.engine.config import load_config, save_config
 from biceps.engine.errors import BicepsError, ConfigError, FileError
 from biceps.engine.skeleton import Skeleton
 from biceps.engine.config import BUNDLED
-
-INVALID = Path(__file__).resolve().parents[1] / "invalid_configs"
-
-# Each broken file, and what the message must say about it.
-INVALID_CASES = {
-    "all_zero_growth.toml": ":3: muscle.nodes: at least one node needs a growth above 0",
-    "bad_colour.toml": ":6: render.muscle_colour: should be a colour written #rrggbb (found 'red')",
-    "bad_graphics.toml": (":6: render.graphics: Input should be 'halfblocks', 'auto', 'kitty',"
-                          " 'sixel' or 'iterm' (found 'png')"),
-    "bad_shading.toml": ":6: render.shading: Input should be 'gouraud' or 'phong' (found 'flat')",
-    "binary_junk.toml": "not a text file",
-    "boolean_scale.toml": ":6: view.scale: Input should be a valid number (found True)",
-    "broken_toml.toml": "not valid TOML",
-    "empty.toml": "the [muscle] table is required, but missing",
-    "flexion_outside_range.toml": ":2: muscle.flexion: 150 degrees is outside",
-    "fractional_segments.toml": ":6: render.segments: Input should be a valid integer (found 48.5)",
-    "infinite_length.toml": ":2: muscle.length: Input should be a finite number (found inf)",
-    "length_and_flexion.toml": "give exactly one of length (cm) and flexion (degrees)",
-    "length_outside_range.toml": ":3: muscle.length: length 50.00 cm is outside",
-    "light_position_short.toml": ":6: light.position[2]: required",
-    "limits_leave_nothing.toml": "muscle.min_length: the limits leave no length",
-    "mismatched_lists.toml": "radius has 3 values but growth has 2",
-    "missing_muscle.toml": "the [muscle] table is required, but missing",
-    "muscle_not_a_table.toml": ":1: muscle: Input should be a valid dictionary",
-    "nan_radius.toml": ":3: muscle.radius[1]: Input should be a finite number (found nan)",
-    "negative_bone.toml": ":6: skeleton.forearm: Input should be greater than 0 (found -3.0)",
-    "negative_growth.toml": "muscle.nodes[1][1]: Input should be greater than or equal to 0",
-    "negative_radius.toml": ":3: muscle.nodes[2][0]: Input should be greater than 0 (found -0.5)",
-    "no_length.toml": "give exactly one of length (cm) and flexion (degrees)",
-    "nodes_and_lists.toml": "either as nodes or as radius and growth, not both",
-    "one_node.toml": "muscle.nodes: a muscle needs at least 2 nodes, got 1",
-    "reversed_flexion_range.toml": ":6: skeleton.flexion_range: flexion range must satisfy",
-    "string_radius.toml": ":3: muscle.radius[0]: Input should be a valid number (found '0.5')",
-    "three_value_node.toml": "muscle.nodes[1]: Tuple should have at most 2 items",
-    "unknown_key.toml": ":2: muscle.lenght: unknown key 'lenght' (did you mean 'length'?)",
-    "unknown_table.toml": ":5: camera: unknown key 'camera'",
-    "wrong_type_length.toml": ":2: muscle.length: Input should be a valid number (found 'thirty')",
-    "wrong_volume_mode.toml": ":2: muscle.volume: Input should be 'closed' or 'frusta' (found 'open')",
-    "zero_radius.toml": ":3: muscle.radius[1]: Input should be greater than 0 (found 0.0)",
-}
-
-
-def test_every_invalid_config_has_an_expected_message():
-    assert sorted(INVALID_CASES) == sorted(p.name for p in INVALID.iterdir())
-
-
-@pytest.mark.parametrize("name", sorted(INVALID_CASES))
-def test_info_refuses_an_invalid_config_with_a_clear_message(name):
-    path = INVALID / name
-    result = CliRunner().invoke(main, ["info", str(path)])
-    assert result.exit_code == 2
-    assert result.stdout == ""
-    assert result.stderr.startswith(f"biceps: {path}")
-    assert INVALID_CASES[name] in result.stderr
-    assert "Traceback" not in result.stderr
 
 
 @pytest.mark.parametrize("name", ["biceps.toml", "toy.toml", "fine.toml"])
@@ -200,11 +143,11 @@ def _limits_lifted(config):
 # and arms the file cannot hold although each value in them is fine on its own.
 INVALID_SAVES = {
     "fov 500": (lambda c: {"view": _forged(c.view, fov=500.0, scale=-3.0)},
-                "view.fov: Input should be less than 170 (found 500.0)"),
+                "view.fov: must be a finite number above 1 and below 170 degrees (found 500.0)"),
     "light at infinity": (lambda c: {"light": _forged(c.light, position=(0.0, 0.0, math.inf))},
-                          "light.position[2]: Input should be a finite number"),
+                          "light.position[2]: must be a finite number from -1e+08 to 1e+08 cm"),
     "ssaa 9": (lambda c: {"render": _forged(c.render, ssaa=9)},
-               "render.ssaa: Input should be less than or equal to 4 (found 9)"),
+               "render.ssaa: must be a whole number from 1 to 4 (found 9)"),
     "unknown shading": (lambda c: {"render": _forged(c.render, shading="flat")},
                         "render.shading: Input should be 'gouraud' or 'phong' (found 'flat')"),
     "overdraw, a debugging view": (lambda c: {"render": replace(c.render, shading="overdraw")},
@@ -213,7 +156,7 @@ INVALID_SAVES = {
                "render.background: should be a colour written #rrggbb (found 'red')"),
     "negative bone": (lambda c: {"arm": replace(c.arm, skeleton=replace(c.arm.skeleton,
                                                                         forearm=-3.0))},
-                      "skeleton.forearm: Input should be greater than 0 (found -3.0)"),
+                      "skeleton.forearm: must be a finite number from 1e-06 to 1e+06 cm (found -3.0)"),
     "reversed joint range": (lambda c: {"arm": replace(c.arm, skeleton=replace(
                                  c.arm.skeleton, min_flexion=100.0, max_flexion=50.0))},
                              "skeleton.flexion_range: flexion range must satisfy"),
@@ -247,8 +190,8 @@ def test_saving_keeps_the_files_permissions(user_copy):
     assert stat.S_IMODE(user_copy.stat().st_mode) == 0o640
 
 
-def test_a_missing_file_is_a_config_error(tmp_path):
-    with pytest.raises(ConfigError, match="no such file"):
+def test_a_missing_file_is_refused(tmp_path):
+    with pytest.raises(FileError, match="no such file"):
         load_config(tmp_path / "nope.toml")
 
 

@@ -5,6 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from biceps.engine.bounds import NODES, RADIUS
 from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import Muscle, frusta_sum, thinnest_radius, volume
 
@@ -97,21 +98,51 @@ def test_a_length_that_is_not_positive_is_refused(spec_muscle, length):
         spec_muscle.at_length(length)
 
 
+RADIUS_RULE = "radius must be a finite number from 1e-06 to 10000 cm"
+GROWTH_RULE = "growth must be a finite number from 0 to 10000"
+
+
 @pytest.mark.parametrize(
     ("radii", "growth", "message"),
     [
         ([1.0], [1.0], "at least 2 nodes"),
         ([1.0, 2.0], [1.0], "2 radii, 1 growths"),
-        ([1.0, -0.1], [1.0, 1.0], "node 2: radius must be above 0"),
-        ([1.0, 0.0], [1.0, 1.0], "node 2: radius must be above 0"),
-        ([1.0, 1.0], [1.0, -1.0], "node 2: growth must be 0 or more"),
-        ([1.0, 1.0], [0.0, 0.0], "at least one node needs a growth above 0"),
-        ([1.0, np.nan], [1.0, 1.0], "node 2: radius must be a number"),
+        ([1.0, -0.1], [1.0, 1.0], f"node 2: {RADIUS_RULE}, not -0.1"),
+        ([1.0, 0.0], [1.0, 1.0], f"node 2: {RADIUS_RULE}, not 0.0"),
+        ([1.0, 1.0], [1.0, -1.0], f"node 2: {GROWTH_RULE}, not -1.0"),
+        ([1.0, 1.0], [0.0, 0.0], "at least one node needs a growth of 1e-06 or more"),
+        ([1.0, np.nan], [1.0, 1.0], f"node 2: {RADIUS_RULE}, not nan"),
+        # What floating point cannot compute: a cube that underflows to a volume of 0, a
+        # square that overflows, a growth whose square is 0.
+        ([1e-162, 1e-162], [1.0, 1.0], f"node 1: {RADIUS_RULE}, not 1e-162"),
+        ([1.0, 1e300], [1.0, 1.0], f"node 2: {RADIUS_RULE}, not 1e\\+300"),
+        ([2.0, 2.0], [0.0, 1e-160], "at least one node needs a growth of 1e-06 or more, or "
+                                    "the muscle cannot change length at constant volume "
+                                    "\\(the largest here is 1e-160\\)"),
+        ([2.0, 2.0], [0.0, 1e5], f"node 2: {GROWTH_RULE}, not 100000.0"),
+        ([1.0] * (NODES + 1), [1.0] * (NODES + 1), f"at most {NODES:,} nodes, not {NODES + 1:,}"),
     ],
 )
 def test_an_invalid_profile_is_refused_with_the_node(radii, growth, message):
     with pytest.raises(RefusedChange, match=message):
         Muscle.of(radii, growth, 10.0)
+
+
+@pytest.mark.parametrize("radius", [RADIUS.low, RADIUS.high])
+@pytest.mark.parametrize("nodes", [2, 5000])
+def test_the_extremes_inside_the_bounds_change_length_at_constant_volume(radius, nodes):
+    muscle = Muscle.of([radius] * nodes, [radius] * nodes, 10.0)
+    for length in (5.0, 20.0, 10.0):
+        muscle = muscle.at_length(length)
+        assert muscle.volume_error < 1e-12
+    assert np.array_equal(muscle.radii, muscle.reference_radii)
+
+
+def test_subdividing_past_the_most_nodes_is_refused():
+    muscle = Muscle.of([1.0] * (NODES // 2 + 1), [1.0] * (NODES // 2 + 1), 10.0)
+    with pytest.raises(RefusedChange, match=f"would make {NODES + 1:,} nodes; a muscle has at "
+                                            f"most {NODES:,}"):
+        muscle.subdivided()
 
 
 def test_state_arrays_are_read_only(spec_muscle):
@@ -139,10 +170,10 @@ def test_editing_growth_keeps_the_shape_and_the_volume(spec_muscle):
 @pytest.mark.parametrize(
     ("edit", "message"),
     [
-        (lambda m: m.with_radius(3, 0.0), "node 4: radius must be above 0"),
+        (lambda m: m.with_radius(3, 0.0), f"node 4: {RADIUS_RULE}"),
         (lambda m: m.with_radius(99, 1.0), "there is no node 100"),
         (lambda m: m.with_growth(-1, 1.0), "there is no node 0"),
-        (lambda m: m.with_growth(2, -0.5), "node 3: growth must be 0 or more"),
+        (lambda m: m.with_growth(2, -0.5), f"node 3: {GROWTH_RULE}"),
         (lambda m: m.with_node_inserted(14), "pick node 1 to 14"),
         (lambda m: m.without_node(15), "there is no node 16"),
     ],
@@ -274,3 +305,29 @@ def test_returning_to_the_rest_length_gives_the_rest_shape_exactly(spec_muscle):
     back = spec_muscle.at_length(29.0).at_length(35.0).at_length(33.0)
     assert back.step == 0.0
     assert np.array_equal(back.radii, spec_muscle.radii)
+
+
+@st.composite
+def bounded_profiles(draw):
+    """Any profile inside the bounds, radii and growth over all their orders of magnitude."""
+    count = draw(st.integers(2, 12))
+    magnitude = st.floats(np.log10(RADIUS.low), np.log10(RADIUS.high)).map(lambda e: 10.0**e)
+    growth = st.one_of(st.just(0.0), magnitude, st.floats(1e-300, RADIUS.low))
+    radii = draw(st.lists(magnitude, min_size=count, max_size=count))
+    growths = draw(st.lists(growth, min_size=count, max_size=count))
+    growths[draw(st.integers(0, count - 1))] = draw(magnitude)
+    length = 10.0 ** draw(st.floats(-6, 6))
+    return Muscle.of(radii, growths, length, draw(st.sampled_from(["closed", "frusta"])))
+
+
+@settings(max_examples=300, deadline=None)
+@given(muscle=bounded_profiles(), factor=st.floats(0.01, 100.0))
+def test_inside_the_bounds_a_length_change_keeps_the_volume_or_says_why_not(muscle, factor):
+    try:
+        changed = muscle.at_length(muscle.length * factor)
+    except RefusedChange as refusal:
+        assert str(refusal).startswith("cannot ")
+        return
+    assert changed.volume_error < 1e-12
+    assert changed.radii.min() > 0
+

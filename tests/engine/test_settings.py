@@ -17,14 +17,16 @@ from biceps.engine.settings import SHADINGS, RenderSettings, View
 from biceps.engine.transforms import Light
 
 INF, NAN = math.inf, math.nan
+POINT = "three finite numbers (x, y, z) from -1e+08 to 1e+08 cm"
 
 # (field, a value it refuses, what the message must say is allowed)
 VIEW_REFUSES = [
-    ("scale", 0.0, "a finite number above 0"),
-    ("scale", -3.0, "a finite number above 0"),
-    ("scale", INF, "a finite number above 0"),
-    ("scale", True, "a finite number above 0"),
-    ("scale", "2", "a finite number above 0"),
+    ("scale", 0.0, "a finite number from 0.01 to 100"),
+    ("scale", -3.0, "a finite number from 0.01 to 100"),
+    ("scale", INF, "a finite number from 0.01 to 100"),
+    ("scale", True, "a finite number from 0.01 to 100"),
+    ("scale", "2", "a finite number from 0.01 to 100"),
+    ("scale", 1e300, "a finite number from 0.01 to 100"),
     ("fov", 500.0, "a finite number above 1 and below 170 degrees"),
     ("fov", 170.0, "a finite number above 1 and below 170 degrees"),
     ("fov", 1.0, "a finite number above 1 and below 170 degrees"),
@@ -32,15 +34,18 @@ VIEW_REFUSES = [
     ("yaw", NAN, "a finite number"),
     ("pitch", INF, "a finite number"),
     ("roll", -INF, "a finite number"),
-    ("offset", (0.0, 0.0), "three finite numbers (x, y, z)"),
-    ("offset", (0.0, 0.0, NAN), "three finite numbers (x, y, z)"),
-    ("offset", "abc", "three finite numbers (x, y, z)"),
+    ("offset", (0.0, 0.0), POINT),
+    ("offset", (0.0, 0.0, NAN), POINT),
+    ("offset", "abc", POINT),
+    ("offset", (1e308, 0.0, 0.0), POINT),
 ]
 LIGHT_REFUSES = [
-    ("position", (0.0, 0.0, INF), "three finite numbers (x, y, z)"),
-    ("position", (NAN, 0.0, 0.0), "three finite numbers (x, y, z)"),
-    ("position", (1.0, 2.0), "three finite numbers (x, y, z)"),
-    ("position", (1.0, 2.0, 3.0, 4.0), "three finite numbers (x, y, z)"),
+    ("position", (0.0, 0.0, INF), POINT),
+    ("position", (NAN, 0.0, 0.0), POINT),
+    ("position", (1.0, 2.0), POINT),
+    ("position", (1.0, 2.0, 3.0, 4.0), POINT),
+    ("position", (0.0, 1e308, 0.0), POINT),
+    ("position", (0.0, 0.0, -1.0000001e8), POINT),
     ("ambient", -0.1, "a finite number from 0 to 1"),
     ("diffuse", 1.5, "a finite number from 0 to 1"),
     ("specular", NAN, "a finite number from 0 to 1"),
@@ -103,8 +108,8 @@ def test_equal_settings_compare_equal_however_written():
 
 
 @given(st.floats())
-def test_a_scale_is_made_exactly_when_it_is_finite_and_above_0(scale):
-    allowed = math.isfinite(scale) and scale > 0
+def test_a_scale_is_made_exactly_when_it_is_from_a_hundredth_to_a_hundred(scale):
+    allowed = 0.01 <= scale <= 100
     try:
         View(scale=scale)
     except SettingError:

@@ -123,9 +123,14 @@ def test_attachments_sit_off_the_axes_where_the_skeleton_says():
 @pytest.mark.parametrize(
     ("skeleton", "message"),
     [
-        (Skeleton(forearm=0.0), "forearm must be above 0"),
-        (Skeleton(origin_to_elbow=-1.0), "origin_to_elbow must be above 0"),
+        (Skeleton(forearm=0.0), "forearm must be a finite number from 1e-06 to 1e\\+06 cm"),
+        (Skeleton(origin_to_elbow=-1.0), "origin_to_elbow must be a finite number from"),
+        (Skeleton(upper_arm=1e300), "upper_arm must be a finite number from 1e-06 to 1e\\+06"),
         (Skeleton(insertion_lateral=math.nan), "insertion_lateral must be a finite number"),
+        (Skeleton(insertion_lateral=1e300), "insertion_lateral must be a finite number from "
+                                            "-1e\\+08 to 1e\\+08 cm"),
+        (Skeleton(elbow_to_insertion=30.0), "elbow_to_insertion must be at most the forearm's "
+                                            "length, 25.4 cm, not 30"),
         (Skeleton(min_flexion=90.0, max_flexion=40.0), "min_flexion < max_flexion"),
         (Skeleton(insertion_forward=-2.0), "insertion_forward: .* behind the elbow's axis"),
         (Skeleton(origin_to_elbow=4.0, origin_forward=3.0, elbow_to_insertion=3.0,

@@ -71,9 +71,12 @@ BAD_VALUES = [
     ("", "2.05", "Radius (1e-06 to 10000 cm): give a number"),
     ("2.08", " ", "Growth (0 to 10000): give a number"),
     ("nan", "2.05", "not a finite number"),
-    ("-1", "2.05", "radius must be above 0"),
-    ("0", "2.05", "radius must be above 0"),
-    ("2.08", "-0.5", "growth must be 0 or more"),
+    ("-1", "2.05", "radius must be a finite number from 1e-06 to 10000 cm, not -1.0"),
+    ("0", "2.05", "radius must be a finite number from 1e-06 to 10000 cm, not 0.0"),
+    ("1e9", "2.05", "radius must be a finite number from 1e-06 to 10000 cm, not 1000000000.0"),
+    ("1e-162", "2.05", "radius must be a finite number from 1e-06 to 10000 cm, not 1e-162"),
+    ("2.08", "-0.5", "growth must be a finite number from 0 to 10000, not -0.5"),
+    ("2.08", "1e300", "growth must be a finite number from 0 to 10000, not 1e+300"),
 ]
 
 

@@ -1,0 +1,114 @@
+"""The numbers the model takes: every bound written once, here, and said the same way
+wherever a number comes from (a file, a dialog, a key, the command line, a script).
+
+The model's bounds are what it can compute in float64 and draw: the volume takes cubes
+of radii and squares of growth coefficients, so a radius of 1e-162 underflows to a volume
+of 0 and one of 1e300 overflows to inf; a growth of 1e-160 has a square of 0, and no length
+change can be solved from it; a light 1e308 cm away lights nothing. The bounds leave every
+shape that makes sense, from a muscle of a micrometre to one of a hundred metres, many
+orders of magnitude from where floating point fails.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from numbers import Integral, Real
+from typing import Any
+
+
+@dataclass(frozen=True)
+class Limits:
+    """The numbers a setting allows: ``low`` or more, up to ``high`` if there is one; the
+    ends themselves excluded when ``exclusive``."""
+
+    low: float
+    high: float | None = None
+    exclusive: bool = False
+    unit: str = ""
+
+    def allows(self, value: float) -> bool:
+        if self.exclusive:
+            return value > self.low and (self.high is None or value < self.high)
+        return value >= self.low and (self.high is None or value <= self.high)
+
+    def __str__(self) -> str:
+        return self.of("")
+
+    def of(self, kind: str) -> str:
+        """The allowed values in words, each one ``kind``: ``a finite number from 1 to 4``."""
+        low, high, unit = self.low, self.high, self.unit
+        if high is None:
+            text = f"above {low:g}{unit}" if self.exclusive else f"{low:g}{unit} or more"
+        elif self.exclusive:
+            text = f"above {low:g} and below {high:g}{unit}"
+        else:
+            text = f"from {low:g} to {high:g}{unit}"
+        return f"{kind} {text}" if kind else text
+
+
+class OutOfBounds(ValueError):
+    """A value that is not what is wanted: ``found`` shows the value, ``wanted`` says in
+    words what is allowed, and the message puts the two together."""
+
+    def __init__(self, found: str, wanted: str) -> None:
+        super().__init__(f"must be {wanted}, not {found}")
+        self.found = found
+        self.wanted = wanted
+
+
+def finite(value: Any, limits: Limits | None = None) -> float:
+    """``value`` as a float: a finite real number (a bool is not one) within ``limits``;
+    otherwise :class:`OutOfBounds`."""
+    if isinstance(value, Real) and not isinstance(value, bool):
+        try:
+            number = float(value)
+        except OverflowError:  # an integer too long for a float
+            number = math.inf
+        if math.isfinite(number) and (limits is None or limits.allows(number)):
+            return number
+    wanted = "a finite number" if limits is None else limits.of("a finite number")
+    raise OutOfBounds(quoted(value), wanted)
+
+
+def whole(value: Any, limits: Limits) -> int:
+    """``value`` as an int: a whole number (not a bool, nor a float such as 2.0) within
+    ``limits``; otherwise :class:`OutOfBounds`."""
+    if isinstance(value, Integral) and not isinstance(value, bool) and limits.allows(value):
+        return int(value)
+    raise OutOfBounds(quoted(value), limits.of("a whole number"))
+
+
+def quoted(value: Any) -> str:
+    """A value as a message quotes it: its repr, shortened; a long integer by its length."""
+    text = repr(value)
+    if isinstance(value, Integral) and not isinstance(value, bool) and len(text) > 20:
+        return f"a {len(text.lstrip('-'))}-digit integer"
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+RADIUS = Limits(1e-6, 1e4, unit=" cm")
+"""A node's radius: a micrometre to a hundred metres."""
+
+GROWTH = Limits(0, 1e4)
+"""A node's growth coefficient: 0 (a tendon) up to, like the radius it scales, 1e4."""
+
+GROWING = 1e-6
+"""The growth at least one node must have. The volume's quadratic term in the length change
+is the sum of the squared growths: at 1e-160 it underflows to 0 and no length can be solved
+(a node growing by less beside it is fine: a subdivided tendon grows by half its neighbour)."""
+
+BONE = Limits(1e-6, 1e6, unit=" cm")
+"""Each of the skeleton's four distances."""
+
+COORDINATE = Limits(-1e8, 1e8, unit=" cm")
+"""Each coordinate of a point in world space (the light) or of a move (the view's offset):
+a hundred times the largest skeleton away, where the picture still computes in float32."""
+
+SCALE = Limits(0.01, 100)
+"""The view's zoom."""
+
+NODES = 20_000
+"""The most nodes a muscle may have. Each node is a ring of the mesh drawn at every frame:
+at 20,000 nodes a frame takes about 0.5 s and 300 MB; the bound keeps the app answering
+(a picture has far fewer pixel rows than that, so more nodes cannot be seen)."""

@@ -1,0 +1,198 @@
+"""Every bad configuration is refused by every command that reads one: exit code 2, one
+message that names the file, the field and what is allowed, no traceback, nothing written."""
+
+import os
+import re
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from biceps.cli import main
+from biceps.engine.bounds import NODES
+from biceps.engine.config import LARGEST_FILE
+
+INVALID = Path(__file__).resolve().parents[1] / "invalid_configs"
+
+# Each broken file in tests/invalid_configs, and what the message must say about it.
+INVALID_CASES = {
+    "all_zero_growth.toml": ":3: muscle.nodes: at least one node needs a growth of 1e-06 or "
+                            "more",
+    "bad_colour.toml": ":6: render.muscle_colour: should be a colour written #rrggbb (found 'red')",
+    "bad_graphics.toml": (":6: render.graphics: Input should be 'halfblocks', 'auto', 'kitty',"
+                          " 'sixel' or 'iterm' (found 'png')"),
+    "bad_shading.toml": ":6: render.shading: Input should be 'gouraud' or 'phong' (found 'flat')",
+    "binary_junk.toml": "not a text file (byte 0 is not UTF-8); a configuration is a TOML text",
+    "boolean_scale.toml": ":6: view.scale: must be a finite number from 0.01 to 100 (found True)",
+    "broken_toml.toml": "not valid TOML",
+    "byte_order_mark.toml": ": starts with a byte-order mark (bytes EF BB BF), which TOML does "
+                            "not allow: save it as UTF-8 without a byte-order mark",
+    "deep_arrays.toml": ":3: muscle.nodes: arrays or tables nested more than 64 deep; a "
+                        "configuration needs at most 2",
+    "deep_inline_tables.toml": ":6: view.offset: arrays or tables nested more than 64 deep",
+    "dotted_key_in_another_table.toml": ":5: muscle.skeleton: unknown key 'skeleton' ([skeleton] "
+                                        "is a table of its own: write its keys under a "
+                                        "[skeleton] header); allowed here: volume, length,",
+    "dotted_key_table.toml": ":4: muscle.nodes: Input should be a valid list (found a table)",
+    "dotted_keys_bad_growth.toml": ":3: muscle.nodes[1][1]: must be a finite number from 0 to "
+                                   "10000 (found -1.0)",
+    "empty.toml": "the [muscle] table is required, but missing",
+    "escape_in_a_key.toml": r": muscle.\x1b]52;c;UFdORUQ=\x07\x1b[2J: unknown key "
+                            r"'\x1b]52;c;UFdORUQ=\x07\x1b[2J'; allowed here: volume,",
+    "far_light.toml": ":6: light.position[1]: must be a finite number from -1e+08 to 1e+08 cm "
+                      "(found 1e+308)",
+    "far_offset.toml": ":6: view.offset[0]: must be a finite number from -1e+08 to 1e+08 cm "
+                       "(found 1e+308)",
+    "flexion_outside_range.toml": ":2: muscle.flexion: 150 degrees is outside "
+                                  "skeleton.flexion_range, 0 to 130",
+    "fractional_segments.toml": ":6: render.segments: must be a whole number from 3 to 1024 "
+                                "(found 48.5)",
+    "huge_bones.toml": ":6: skeleton.upper_arm: must be a finite number from 1e-06 to 1e+06 cm "
+                       "(found 1e+300)",
+    "huge_integer.toml": ":3: muscle.nodes[1][0]: must be a finite number from 1e-06 to 10000 cm "
+                         "(found a 400-digit integer)",
+    "huge_radius.toml": ":4: muscle.nodes[1][0]: must be a finite number from 1e-06 to 10000 cm "
+                        "(found 1e+300)",
+    "huge_scale.toml": ":6: view.scale: must be a finite number from 0.01 to 100 (found 1e+300)",
+    "infinite_length.toml": ":2: muscle.length: must be a finite number above 0 cm (found inf)",
+    "insertion_past_the_hand.toml": ":7: skeleton.elbow_to_insertion: must be at most the "
+                                    "forearm's length, 25.4 cm, not 30",
+    "length_and_flexion.toml": "give exactly one of length (cm) and flexion (degrees)",
+    "length_outside_range.toml": ":3: muscle.length: length 50.00 cm is outside what the "
+                                 "skeleton and limits allow: ",
+    "light_position_short.toml": ":6: light.position[2]: required",
+    "limits_leave_nothing.toml": "muscle.min_length: the limits leave no length",
+    "many_bad_nodes.toml": ":4: muscle.nodes[0][0]: must be a finite number from 1e-06 to "
+                           "10000 cm (found -1)",
+    "markup_in_a_key.toml": ": muscle.[@click=app.quit]q: unknown key '[@click=app.quit]q'; "
+                            "allowed here: volume,",
+    "mismatched_lists.toml": "radius has 3 values but growth has 2",
+    "missing_muscle.toml": "the [muscle] table is required, but missing",
+    "muscle_not_a_table.toml": ":1: muscle: Input should be a valid dictionary",
+    "nan_radius.toml": ":3: muscle.radius[1]: must be a finite number from 1e-06 to 10000 cm "
+                       "(found nan)",
+    "negative_bone.toml": ":6: skeleton.forearm: must be a finite number from 1e-06 to 1e+06 cm "
+                          "(found -3.0)",
+    "negative_growth.toml": ":3: muscle.nodes[1][1]: must be a finite number from 0 to 10000 "
+                            "(found -1.0)",
+    "negative_radius.toml": ":3: muscle.nodes[2][0]: must be a finite number from 1e-06 to "
+                            "10000 cm (found -0.5)",
+    "no_length.toml": "give exactly one of length (cm) and flexion (degrees)",
+    "nodes_and_lists.toml": "either as nodes or as radius and growth, not both",
+    "one_node.toml": "muscle.nodes: a muscle needs at least 2 nodes, got 1",
+    "reversed_flexion_range.toml": ":6: skeleton.flexion_range: flexion range must satisfy 0 <= "
+                                   "min_flexion < max_flexion <= 180 degrees, got 120.0 to 10.0",
+    "string_radius.toml": ":3: muscle.radius[0]: must be a finite number from 1e-06 to 10000 cm "
+                          "(found '0.5')",
+    "three_value_node.toml": "muscle.nodes[1]: Tuple should have at most 2 items",
+    "tiny_growth.toml": ":4: muscle.nodes: at least one node needs a growth of 1e-06 or more, "
+                        "or the muscle cannot change length at constant volume (the largest "
+                        "here is 1e-160)",
+    "tiny_radii.toml": ":4: muscle.nodes[0][0]: must be a finite number from 1e-06 to 10000 cm "
+                       "(found 1e-162)",
+    "unknown_key.toml": ":2: muscle.lenght: unknown key 'lenght' (did you mean 'length'?)",
+    "unknown_table.toml": ":5: camera: unknown key 'camera'",
+    "wrong_type_length.toml": ":2: muscle.length: must be a finite number above 0 cm (found "
+                              "'thirty')",
+    "wrong_volume_mode.toml": ":2: muscle.volume: Input should be 'closed' or 'frusta' (found "
+                              "'open')",
+    "zero_radius.toml": ":3: muscle.radius[1]: must be a finite number from 1e-06 to 10000 cm "
+                        "(found 0.0)",
+}
+
+
+def _too_many_nodes(folder: Path) -> Path:
+    path = folder / "too_many_nodes.toml"
+    path.write_text("[muscle]\nlength = 33.0\nnodes = [\n" + "[1.0, 1.0],\n" * (NODES + 1) + "]\n")
+    return path
+
+
+def _too_large(folder: Path) -> Path:
+    path = folder / "too_large.toml"
+    with path.open("wb") as stream:  # sparse: the size without the disk
+        stream.truncate(LARGEST_FILE + 1)
+    return path
+
+
+def _pipe(folder: Path) -> Path:
+    path = folder / "pipe.toml"
+    os.mkfifo(path)  # reading it would wait for a writer for ever
+    return path
+
+
+def _endless_device(folder: Path) -> Path:
+    path = folder / "zero.toml"
+    path.symlink_to("/dev/zero")  # reading it would never end
+    return path
+
+
+def _folder(folder: Path) -> Path:
+    path = folder / "folder.toml"
+    path.mkdir()
+    return path
+
+
+def _name_too_long(folder: Path) -> Path:
+    return folder / ("x" * 300 + ".toml")
+
+
+# Files made for each test, as they cannot be kept in the repository, and what the message
+# must say about each.
+MADE_CASES = {
+    "too many nodes": (_too_many_nodes, f":3: muscle.nodes: a muscle has at most {NODES:,} "
+                                        f"nodes, not {NODES + 1:,}"),
+    "too large": (_too_large, ": is larger than 4 MiB, too large to be a configuration"),
+    "a pipe": (_pipe, ": is a pipe (FIFO), not a regular file"),
+    "a link to /dev/zero": (_endless_device, ": is a character device, not a regular file"),
+    "a folder": (_folder, ": is a directory, not a regular file"),
+    "a name too long": (_name_too_long, ": the name is 305 bytes long; a file name here has at "
+                                        "most 255"),
+}
+
+COMMANDS = {
+    "info": lambda out: ["info"],
+    "snapshot": lambda out: ["snapshot", "-o", out / "arm.png", "--size", "64x48"],
+    "export-mesh": lambda out: ["export-mesh", "-o", out / "arm.obj"],
+}
+
+# Every character a terminal acts on, but the newline that ends a line of the message.
+CONTROL = re.compile(r"[\x00-\x09\x0b-\x1f\x7f-\x9f]")
+
+
+def test_every_invalid_config_has_an_expected_message():
+    assert sorted(INVALID_CASES) == sorted(p.name for p in INVALID.iterdir())
+
+
+def _refused(command: str, path: Path, out: Path, expected: str) -> None:
+    out.mkdir()
+    result = CliRunner().invoke(main, [*map(str, COMMANDS[command](out)), str(path)])
+    assert result.exit_code == 2, result.output
+    assert result.stdout == ""
+    assert result.stderr.startswith(f"biceps: {path}")
+    assert expected in result.stderr
+    assert len(result.stderr.splitlines()) <= 6  # one message, however many problems
+    assert "Traceback" not in result.stderr
+    assert not CONTROL.search(result.stderr)
+    assert list(out.iterdir()) == []
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+@pytest.mark.parametrize("name", sorted(INVALID_CASES))
+def test_every_command_refuses_an_invalid_config(tmp_path, command, name):
+    _refused(command, INVALID / name, tmp_path / "out", INVALID_CASES[name])
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+@pytest.mark.parametrize("case", MADE_CASES)
+def test_every_command_refuses_what_is_not_a_regular_file_of_sane_size(tmp_path, command,
+                                                                         case):
+    make, expected = MADE_CASES[case]
+    _refused(command, make(tmp_path), tmp_path / "out", expected)
+
+
+def test_thousands_of_bad_nodes_get_the_first_few_and_a_count():
+    result = CliRunner().invoke(main, ["info", str(INVALID / "many_bad_nodes.toml")])
+    lines = result.stderr.splitlines()
+    assert len(lines) == 6
+    assert [f"muscle.nodes[{i}][0]" in line for i, line in enumerate(lines[:5])] == [True] * 5
+    assert lines[5].endswith("many_bad_nodes.toml: and 1,995 more problems like these")
