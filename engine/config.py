@@ -323,7 +323,8 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
     try:
         muscle = Muscle.of(radii, growth, length, muscle_table.volume)
     except RefusedChange as error:
-        key = "nodes" if muscle_table.nodes is not None else "growth"
+        key = "nodes" if muscle_table.nodes is not None else \
+            "growth" if "growth" in str(error) else "radius"
         raise fail(("muscle", key), str(error)) from None
     arm = Arm(muscle, skeleton, muscle_table.min_length, muscle_table.max_length)
     low, high = arm.length_range()
