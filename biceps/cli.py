@@ -192,8 +192,10 @@ def app(config: Path, colors: str, fps: float | None, graphics: str | None,
     loaded = load_config(config)  # fail here, before the terminal switches screens
     from biceps.tui.app import run_app
 
-    run_app(loaded, colors=colors, fps=fps, compile_aside=_own_process(), graphics=graphics,
-            pixel_scale=pixel_scale)
+    status = run_app(loaded, colors=colors, fps=fps, compile_aside=_own_process(),
+                     graphics=graphics, pixel_scale=pixel_scale)
+    if status:
+        sys.exit(status)
 
 
 @main.command(short_help="Say what this terminal can show, and what the app would use.")

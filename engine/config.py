@@ -36,7 +36,7 @@ from biceps.engine.bounds import (
     whole,
 )
 from biceps.engine.errors import ConfigError, FileChanged, FileError, RefusedChange
-from biceps.engine.files import read_regular_file, write_atomically
+from biceps.engine.files import read_regular_file, same_file, write_atomically
 from biceps.engine.muscle import Muscle, VolumeMode
 from biceps.engine.names import printable
 from biceps.engine.settings import (
@@ -517,18 +517,11 @@ def save_config(config: Config, arm: Arm, view: View, light: Light, render: Rend
         saved = _parsed(target, text)
     except ConfigError as error:
         raise ConfigError(f"not saved (nothing was written): {error}") from None
-    if not overwrite and _same_file(target, config.path) and _changed_on_disk(config):
+    if not overwrite and same_file(target, config.path) and _changed_on_disk(config):
         raise FileChanged(f"{printable(target)}: changed on disk since it was read; saving "
                           "would lose those changes, so nothing was written")
     write_atomically(target, text.encode("utf-8"))
     return saved
-
-
-def _same_file(path: Path, other: Path) -> bool:
-    try:
-        return os.path.samefile(path, other)
-    except OSError:  # one of them is not there (yet)
-        return False
 
 
 def _changed_on_disk(config: Config) -> bool:

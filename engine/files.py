@@ -90,6 +90,14 @@ def _longest_name(folder: Path) -> int:
         return 255
 
 
+def same_file(path: str | os.PathLike, other: str | os.PathLike) -> bool:
+    """Whether both name one file (through links); False if either is not there."""
+    try:
+        return os.path.samefile(path, other)
+    except OSError:
+        return False
+
+
 def write_atomically(path: str | os.PathLike, data: bytes) -> None:
     """Replace ``path`` with ``data`` atomically, or raise :class:`FileError` and touch nothing.
 

@@ -7,9 +7,11 @@ model refuses leaves the scene as it was and says why in a notification.
 
 from __future__ import annotations
 
+import asyncio
 import gc
 import os
-from dataclasses import replace
+import sys
+from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
 from time import monotonic
@@ -21,7 +23,9 @@ from textual import events, on, work
 from textual._compositor import CompositorUpdate
 from textual.app import App
 from textual.binding import Binding
+from textual.command import CommandPalette
 from textual.driver import Driver
+from textual.message import Message
 from textual.notifications import SeverityLevel
 from textual.reactive import var
 from textual.screen import Screen
@@ -30,8 +34,10 @@ from biceps.configs import FOLDER as BUNDLED_MODELS
 from biceps.engine import coldstart
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, load_config, save_config
-from biceps.engine.errors import BicepsError
+from biceps.engine.errors import BicepsError, FileChanged
 from biceps.engine.export import check_writable, parse_size, write_png
+from biceps.engine.files import same_file
+from biceps.engine.names import printable
 from biceps.engine.scene import Scene, SceneRenderer
 from biceps.tui import detect
 from biceps.tui.changes import (
@@ -60,10 +66,12 @@ from biceps.tui.pixels import encoder_for
 from biceps.tui.screens.choice import Answer, Choice
 from biceps.tui.screens.help import HelpScreen
 from biceps.tui.screens.main import MainScreen
+from biceps.tui.screens.once import Palette
 from biceps.tui.screens.prompt import Field, Prompt
 from biceps.tui.screens.record import RecordPrompt, as_recording
 from biceps.tui.sgr import lean
 from biceps.tui.suggest import PathSuggester
+from biceps.tui.terminal_input import read_terminal_leniently
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.recorder import Recorder, Recording
@@ -75,6 +83,22 @@ DRAG_TURN = 180.0  # degrees per picture height
 DRAG_MOVE = 70.0  # cm per picture height
 
 TURN = Binding.Group("Turn", compact=True)
+
+
+@dataclass(frozen=True)
+class Rescue:
+    """What an app that ended on an error left: the model as it was, the file it came from
+    (and the scene last saved there), and the error, in a line."""
+
+    config: Config
+    scene: Scene
+    saved: Scene
+    error: str
+
+
+class QuitAsked(Message):
+    """The person asked to quit; delivered behind every key they typed before (see
+    :meth:`BicepsApp.action_quit`)."""
 
 
 class BicepsApp(App[None]):
@@ -128,22 +152,33 @@ class BicepsApp(App[None]):
     unsaved: var[bool] = var(False)
 
     def __init__(self, config: Config, fps: float | None = None,
-                 encoder: PictureEncoder | None = None, notice: str | None = None) -> None:
+                 encoder: PictureEncoder | None = None, notice: str | None = None,
+                 rescue: Rescue | None = None) -> None:
         """``fps``: the most frames a second the picture is redrawn at (None: no cap but
         the terminal's pace and Textual's own limit); ``encoder``: how the picture reaches
         the terminal (default: half-blocks); ``notice``: said once the app is up (what the
-        terminal could show, see tui/detect.py)."""
+        terminal could show, see tui/detect.py). ``rescue``: start on the model an app left
+        when it ended on an error, and offer to save it."""
         super().__init__()
         self.pacer = Pacer(self._ask_cursor_position, self.set_timer, fps)
         self._encoder = encoder
         self._notice = notice
         self._history = History()
-        self._adopt(config, Scene.of(config))
-        self.set_reactive(BicepsApp.scene, self._saved)
-        self._export_path = f"{config.path.stem}.png"
+        self.failure: str | None = None  # the error this app ended on, if it did
+        self._rescue = rescue
+        if rescue is None:
+            self._adopt(config, Scene.of(config))
+            scene = self._saved
+        else:
+            self._adopt(rescue.config, rescue.saved)
+            scene = rescue.scene
+        self.set_reactive(BicepsApp.scene, scene)
+        self.set_reactive(BicepsApp.unsaved, has_unsaved_edits(scene, self._saved))
+        self._export_path = f"{self.config.path.stem}.png"
         self._export_size = "1920x1080"
         self._last_recording: Recording | None = None
         self._notified_until: dict[str, float] = {}
+        self._saving = asyncio.Lock()
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         # On the 'too small' screen nothing is seen to change, so nothing changes: only
@@ -157,8 +192,28 @@ class BicepsApp(App[None]):
         return MainScreen(self.pacer, self._encoder)
 
     def get_driver_class(self) -> type[Driver]:
-        # Textual's own driver, sending only the colour codes that change (tui/sgr.py).
+        # Textual's own driver, reading stray bytes as U+FFFD (tui/terminal_input.py) and
+        # sending only the colour codes that change (tui/sgr.py).
+        read_terminal_leniently()
         return lean(super().get_driver_class())
+
+    def _handle_exception(self, error: Exception) -> None:
+        # Textual ends the app on an error nothing caught (there is no public hook for it):
+        # note it, so that run_app can offer to save the model and exit with an error.
+        if self.failure is None:
+            self.failure = f"{type(error).__name__}: {error}"
+        super()._handle_exception(error)
+
+    def panic(self, *renderables) -> None:
+        # How Textual ends the app on an error in its input thread.
+        if self.failure is None:
+            self.failure = "an error reading the terminal"
+        super().panic(*renderables)
+
+    def action_command_palette(self) -> None:
+        # Textual's, guarded against two of its faults (tui/screens/once.py).
+        if self.use_command_palette and not CommandPalette.is_open(self):
+            self.push_screen(Palette(id="--command-palette"))
 
     def on_ready(self) -> None:
         # Every frame makes thousands of short-lived segments, and every so often Python
@@ -169,6 +224,8 @@ class BicepsApp(App[None]):
         gc.freeze()
         if self._notice:
             self.notify(self._notice, timeout=12, markup=False)
+        if self._rescue is not None:
+            self._offer_rescue()
 
     def _display(self, screen: Screen, renderable: RenderableType | None) -> None:
         # Real pixels are painted over cells that Textual may write again without a new
@@ -214,6 +271,8 @@ class BicepsApp(App[None]):
             text: until for text, until in self._notified_until.items() if until > now
         }
         self._notified_until[message] = now + timeout
+        if not markup:  # text from outside (a file name, an error): nothing in it may act
+            message = "\n".join(printable(line) for line in message.split("\n"))
         super().notify(message, title=title, severity=severity, timeout=timeout, markup=markup)
 
     def _refuse(self, reason: str) -> None:
@@ -334,32 +393,45 @@ class BicepsApp(App[None]):
         the installation (and replaced by the next upgrade), ask where to save a copy."""
         if _bundled(self.config.path):
             return await self._save_as()
-        return self._save()
+        return await self._save()
 
-    def _save(self, path: Path | None = None) -> bool:
-        scene = self.scene
-        try:
-            config = save_config(self.config, scene.arm, scene.view, scene.light, scene.render,
-                                 path)
-        except BicepsError as error:
-            self.notify(str(error), title="Not saved", severity="error", markup=False)
-            return False
-        self._adopt(config, scene)
-        self.unsaved = False
-        self.notify(f"Saved {config.path.resolve()}", markup=False)
-        return True
+    async def _save(self, path: Path | None = None) -> bool:
+        """Save the scene to ``path`` (the file it came from if None); True if saved.
+
+        The work runs in a thread, so a save of a large muscle does not stop the app, and
+        one save at a time, each from the file the last one left. A file changed on disk
+        since it was read is replaced only if the person says so.
+        """
+        async with self._saving:
+            scene, config = self.scene, self.config
+            save = partial(save_config, config, scene.arm, scene.view, scene.light, scene.render,
+                           path)
+            try:
+                try:
+                    saved = await asyncio.to_thread(save)
+                except FileChanged:
+                    if not await self._confirm_overwrite(config.path):
+                        return False
+                    saved = await asyncio.to_thread(partial(save, overwrite=True))
+            except BicepsError as error:
+                self.notify(str(error), title="Not saved", severity="error", markup=False)
+                return False
+            self._adopt(saved, scene)
+            self.unsaved = has_unsaved_edits(self.scene, scene)  # edits made meanwhile
+            self.notify(f"Saved {printable(saved.path.resolve())}", markup=False)
+            return True
 
     def _adopt(self, config: Config, saved: Scene) -> None:
         """Make ``config`` the file the app edits, ``saved`` the scene it holds."""
         self.config = config
         self._saved = saved
-        self.sub_title = config.path.name
+        self.sub_title = printable(config.path.name)
 
     def _config_file_field(self) -> Field:
         path = self.config.path
         if _bundled(path):
             path = Path.cwd() / path.name  # a copy of one's own, where one works
-        return Field("File", str(path), parse_path, PathSuggester((".toml",)))
+        return Field("File", printable(path), parse_path, PathSuggester((".toml",)))
 
     @work
     async def action_save_as(self) -> None:
@@ -375,10 +447,10 @@ class BicepsApp(App[None]):
                 return False
             (path,) = answer
             field = replace(field, text=str(path))  # if asked again, as typed
-            if (os.path.exists(path) and not _same_file(path, self.config.path)
+            if (os.path.exists(path) and not same_file(path, self.config.path)
                     and not await self._confirm_replace(path)):
                 continue
-            if self._save(path):
+            if await self._save(path):
                 return True
 
     @work
@@ -455,13 +527,48 @@ class BicepsApp(App[None]):
                 break
         recorder.record(self.scene, recording)
 
+    def action_quit(self) -> None:
+        # ctrl+q is a priority binding, run as soon as the key arrives, while keys typed
+        # before it may still be on their way through the focused widget to their
+        # bindings ("c" then ctrl+q at once). Send the request the same way, behind them,
+        # so that it finds their edits made.
+        (self.focused or self.screen).post_message(QuitAsked())
+
+    @on(QuitAsked)
+    def _quit_asked(self) -> None:
+        self._quit()
+
     @work
-    async def action_quit(self) -> None:
+    async def _quit(self) -> None:
         if isinstance(self.screen, Choice):
             return  # ctrl+q again while the question is up: it is still waiting for an answer
         if self.unsaved and not await self._unsaved_edits_settled("quit"):
             return
         self.exit()
+
+    @work
+    async def _offer_rescue(self) -> None:
+        """Say what error ended the app before, and offer to save the model it left."""
+        question = (
+            f"biceps stopped on an error it did not expect:\n\n{printable(self._rescue.error)}"
+            f"\n\nYour model is as it was, with edits not saved to "
+            f"{printable(self.config.path.name)}. Save them before you go (escape: keep "
+            "working)."
+        )
+        answers = [
+            Answer("s", "Save, then quit", "save", "primary"),
+            Answer("a", "Save as, then quit", "save_as"),
+            Answer("q", "Quit without saving", "quit", "error"),
+        ]
+        while True:
+            answer = await self.push_screen_wait(Choice("biceps ran into an error", question,
+                                                        answers))
+            if answer is None:
+                return
+            if answer == "quit" or await (self._save_or_ask() if answer == "save"
+                                          else self._save_as()):
+                self.exit()
+                return
 
     async def _unsaved_edits_settled(self, doing: str) -> bool:
         """Ask what to do with unsaved edits before doing something that drops them.
@@ -472,7 +579,7 @@ class BicepsApp(App[None]):
             Answer("s", f"Save, then {doing}", "save", "primary"),
             Answer("d", "Discard", "discard", "error"),
         ]
-        question = f"{self.config.path.name} has unsaved edits."
+        question = f"{printable(self.config.path.name)} has unsaved edits."
         answer = await self.push_screen_wait(Choice("Unsaved edits", question, answers))
         if answer == "save":
             return await self._save_or_ask()
@@ -481,8 +588,15 @@ class BicepsApp(App[None]):
     async def _confirm_replace(self, path: Path) -> bool:
         """Whether to replace ``path``; no (escape) goes back to the dialog that named it."""
         answers = [Answer("y", "Replace it", "replace", "error")]
-        question = f"{path.resolve()} already exists."
+        question = f"{printable(path.resolve())} already exists."
         return await self.push_screen_wait(Choice("Replace?", question, answers)) == "replace"
+
+    async def _confirm_overwrite(self, path: Path) -> bool:
+        answers = [Answer("o", "Overwrite it", "overwrite", "error")]
+        question = (f"{printable(path)} was changed on disk since it was opened here: saving "
+                    "replaces those changes with this model.")
+        choice = Choice("Changed on disk", question, answers)
+        return await self.push_screen_wait(choice) == "overwrite"
 
 
 def _bundled(path: Path) -> bool:
@@ -490,18 +604,17 @@ def _bundled(path: Path) -> bool:
     return path.resolve().parent == BUNDLED_MODELS.resolve()
 
 
-def _same_file(path: Path, other: Path) -> bool:
-    return os.path.exists(other) and os.path.samefile(path, other)
-
-
 def run_app(config: Config, colors: str = "auto", fps: float | None = None,
             compile_aside: bool = False, graphics: str | None = None,
-            pixel_scale: float = 1.0) -> None:
+            pixel_scale: float = 1.0) -> int:
     """Run the app on ``config``; ``colors`` is ``auto``, ``truecolor`` or ``256``; ``fps``
     caps the frame rate. ``compile_aside``: compile a frame's kernels in a forked child
     while Textual starts (see engine/coldstart.py), for a process of its own.
     ``graphics``: the command line's choice of how the picture reaches the terminal
-    (default: the config's), real pixels ``pixel_scale`` of the terminal's each way."""
+    (default: the config's), real pixels ``pixel_scale`` of the terminal's each way.
+
+    Returns the exit status: 0, or 1 if the app ended on an error, after offering to save
+    the model it had (:func:`rescued`)."""
     if colors != "auto":
         os.environ["TEXTUAL_COLOR_SYSTEM"] = colors
         # Textual reads the variable once, when it is first imported, which has happened
@@ -515,7 +628,26 @@ def run_app(config: Config, colors: str = "auto", fps: float | None = None,
     encoder = encoder_for(choice, pixel_scale)
     if compile_aside:
         coldstart.compile_aside(partial(_draw_a_frame, config, encoder))
-    BicepsApp(config, fps=fps, encoder=encoder, notice=detect.notice(asked, choice)).run()
+    app = BicepsApp(config, fps=fps, encoder=encoder, notice=detect.notice(asked, choice))
+    app.run()
+    if app.failure is None:
+        return 0
+    rescue = rescued(app, fps)
+    if rescue is not None:
+        rescue.run()
+    print(f"biceps: stopped on an error it did not expect ({printable(app.failure)}); the "
+          "details are above. Please report them.", file=sys.stderr)
+    return 1
+
+
+def rescued(app: BicepsApp, fps: float | None = None) -> BicepsApp | None:
+    """An app on the model ``app`` ended with, offering to save it; None if nothing is
+    unsaved. Whatever broke in ``app`` (its screens, its message queues), this one is new,
+    and draws with half-blocks, which any terminal shows."""
+    if not has_unsaved_edits(app.scene, app._saved):
+        return None
+    return BicepsApp(app.config, fps=fps,
+                     rescue=Rescue(app.config, app.scene, app._saved, app.failure or "?"))
 
 
 def _draw_a_frame(config: Config, encoder: PictureEncoder) -> None:

@@ -9,8 +9,9 @@ from textual import events, on
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
-from textual.screen import ModalScreen
 from textual.widgets import Button, Label
+
+from biceps.tui.screens.once import Dialog
 
 
 @dataclass(frozen=True)
@@ -21,7 +22,7 @@ class Answer:
     variant: str = "default"
 
 
-class Choice(ModalScreen[str | None]):
+class Choice(Dialog[str | None]):
     """Dismisses with the chosen answer's value, or ``None`` on escape or Cancel."""
 
     BINDINGS = [Binding("escape", "dismiss", "Cancel")]

@@ -13,13 +13,14 @@ from rich.markdown import Markdown
 from rich.theme import Theme
 from textual.app import ComposeResult
 from textual.binding import Binding
-from textual.screen import ModalScreen
 from textual.widgets import RichLog
+
+from biceps.tui.screens.once import Dialog
 
 HELP = files("biceps.tui").joinpath("help.md").read_text(encoding="utf-8")
 
 
-class HelpScreen(ModalScreen[None]):
+class HelpScreen(Dialog[None]):
     BINDINGS = [Binding("escape,q,f1,question_mark", "dismiss", "Close help")]
 
     def compose(self) -> ComposeResult:

@@ -10,6 +10,7 @@ from __future__ import annotations
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
+from textual.content import Content
 from textual.events import Resize, ScreenSuspend
 from textual.screen import Screen
 from textual.widget import Widget
@@ -139,7 +140,9 @@ class MainScreen(Screen[None]):
             self.query_one(Plots).show(arm)
 
     def _show_file(self) -> None:
-        self.query_one(Stats).border_title = self.app.sub_title + (
-            " ● unsaved" if self.app.unsaved else ""
+        # Content, not a str: a str is read as markup, and a file may be named [b]x.toml,
+        # or [@click=app.quit]q.toml.
+        self.query_one(Stats).border_title = Content(
+            self.app.sub_title + (" ● unsaved" if self.app.unsaved else "")
         )
 

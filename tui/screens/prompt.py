@@ -13,13 +13,17 @@ from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
-from textual.screen import ModalScreen
 from textual.suggester import Suggester
 from textual.widgets import Button, Input, Label
 
 from biceps.engine.errors import BicepsError
+from biceps.tui.screens.once import Dialog
 
 T = TypeVar("T")
+
+# What a field takes: no control characters, which would reach the terminal as they are
+# when the field shows them (a paste can hold an escape sequence).
+PRINTABLE = r"[^\x00-\x1f\x7f-\x9f]*"
 
 
 @dataclass(frozen=True)
@@ -40,7 +44,7 @@ class _Input(Input):
             self.action_cursor_right()
 
 
-class Prompt(ModalScreen[tuple[Any, ...] | None]):
+class Prompt(Dialog[tuple[Any, ...] | None]):
     """Dismisses with the parsed values of every field, or ``None`` when cancelled.
 
     ``check``, given the parsed values, raises :class:`BicepsError` if the model would
@@ -68,7 +72,7 @@ class Prompt(ModalScreen[tuple[Any, ...] | None]):
             box.border_title = self._title
             for field in self._fields:
                 yield Label(field.label)
-                yield _Input(field.text, suggester=field.suggester)
+                yield _Input(field.text, suggester=field.suggester, restrict=PRINTABLE)
             with Horizontal(classes="dialog-buttons"):
                 yield Button(self._accept, variant="primary", id="accept")
                 yield Button("Cancel (esc)", id="cancel")

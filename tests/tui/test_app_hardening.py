@@ -1,0 +1,253 @@
+"""No key, burst, name or file ends the app or loses an edit; what a name puts on the screen
+is inert; a save respects the file; an error that still gets through offers to save."""
+
+import os
+import shutil
+import stat
+from pathlib import Path
+
+import pytest
+from textual import events
+from textual.content import Content
+from textual.widgets import Input
+
+from biceps.engine.config import DEFAULT_CONFIG, load_config
+from biceps.tui.app import BicepsApp, rescued
+from biceps.tui.screens.choice import Choice
+from biceps.tui.screens.main import MainScreen
+from biceps.tui.screens.once import Palette
+from biceps.tui.screens.prompt import Prompt
+from biceps.tui.widgets.node_table import NodeTable
+from biceps.tui.widgets.stats import Stats
+
+
+async def _burst(session, *keys: str) -> None:
+    """Send ``keys`` at once, as a terminal does when they come together, then wait."""
+    for key in keys:
+        session.app.post_message(events.Key(key, None))
+    await session.settle()
+
+
+# Bursts that ended the app with ScreenStackError or KeyError: 0 (Textual 8.2's own faults,
+# tui/screens/once.py).
+@pytest.mark.parametrize("keys", [
+    ("tab", "enter", "enter", "enter"),
+    ("ctrl+p", "enter", "enter"),
+    ("ctrl+p", "pagedown"),
+    ("ctrl+p", "pageup"),
+    ("escape", "escape"),
+    ("question_mark", "escape", "escape"),
+    ("e", "escape", "escape", "escape"),
+], ids=" ".join)
+async def test_a_quick_burst_of_keys_does_not_end_the_app(biceps, keys):
+    async with biceps() as session:
+        before = session.app.scene.arm
+        await _burst(session, *keys)
+        assert session.app.failure is None
+        assert session.app.return_code is None
+        assert session.app.scene.arm.length == before.length
+
+
+async def test_a_double_enter_in_the_node_editor_makes_one_edit(biceps):
+    async with biceps() as session:
+        await session.pilot.press("tab", "down", "enter")
+        radius, growth = session.app.screen.query(Input)
+        radius.value = "0.5"
+        await _burst(session, "enter", "enter")
+        assert isinstance(session.app.screen, MainScreen)
+        assert session.app.scene.arm.muscle.radii[1] == 0.5
+
+
+async def test_a_command_from_the_palette_runs_once_however_fast_enter_is_pressed(biceps,
+                                                                                  monkeypatch):
+    runs = []
+    monkeypatch.setattr(BicepsApp, "action_help", lambda app: runs.append("help"))
+    async with biceps() as session:
+        await session.pilot.press("ctrl+p", *"Help")
+        await session.settle()
+        assert isinstance(session.app.screen, Palette)
+        await _burst(session, "enter", "enter", "enter", "enter")
+        assert session.app.failure is None
+        assert runs == ["help"]
+
+
+async def test_contract_then_quit_at_once_asks_about_the_edit(biceps):
+    async with biceps() as session:
+        await _burst(session, "c", "ctrl+q")
+        assert session.app.scene.arm.length == 32.9
+        assert isinstance(session.app.screen, Choice)
+        assert session.app.return_code is None
+
+
+async def test_stretch_then_quit_from_the_node_table_at_once_asks_too(biceps):
+    async with biceps() as session:
+        await session.pilot.press("tab")
+        await _burst(session, "x", "ctrl+q")
+        assert isinstance(session.app.screen, Choice)
+
+
+# Names that are terminal escapes or Textual markup: shown as text, doing nothing.
+ESCAPES = "x\x1b]52;c;UFdORUQ=\x07\x1b[2J.toml"
+NAMES = {
+    "escapes": (ESCAPES, r"x\x1b]52;c;UFdORUQ=\x07\x1b[2J.toml"),
+    "bold markup": ("[b]x.toml", "[b]x.toml"),
+    "a click that quits": ("[@click=app.quit]q.toml", "[@click=app.quit]q.toml"),
+    "a byte that is not UTF-8": (os.fsdecode(b"x\xff.toml"), r"x\xff.toml"),
+}
+
+
+def _named(folder: Path, name: str):
+    path = folder / name
+    shutil.copy(DEFAULT_CONFIG, path)
+    return load_config(path)
+
+
+@pytest.mark.parametrize("case", NAMES)
+async def test_a_file_name_is_shown_as_it_is_written_and_does_nothing(biceps, tmp_path, case):
+    name, shown = NAMES[case]
+    async with biceps(on=_named(tmp_path, name)) as session:
+        stats = session.app.screen.query_one(Stats)
+        assert Content.from_markup(stats.border_title).plain == shown
+        await session.pilot.click(Stats, offset=(4, 0))  # on the title
+        await session.pilot.press("c", "ctrl+s")
+        await session.settle()
+        assert session.app.return_code is None  # no click action quit it
+        assert session.notes[-1].message.endswith(shown)  # "Saved ..."
+        assert not any(char in note.message for note in session.notes for char in "\x1b\x07")
+        await session.pilot.press("c", "q")
+        question = session.app.screen.query_one("Label").render()
+        assert str(question) == f"{shown} has unsaved edits."
+
+
+async def test_a_pasted_escape_sequence_is_not_taken_into_a_dialog(biceps):
+    async with biceps() as session:
+        await session.pilot.press("e")
+        box = session.app.screen.query(Input).first()
+        before = box.value
+        box.post_message(events.Paste("\x1b]52;c;UFdORUQ=\x07evil.png"))
+        await session.settle()
+        assert box.value == before
+        box.post_message(events.Paste("fine.png"))
+        await session.settle()
+        assert box.value.endswith("fine.png")
+
+
+@pytest.mark.parametrize("key, field", [("e", 0), ("ctrl+d", 0), ("ctrl+o", 0)])
+async def test_a_file_name_too_long_is_refused_in_every_dialog(biceps, tmp_path, key, field):
+    async with biceps() as session:
+        await session.pilot.press(key)
+        session.app.screen.query(Input)[field].value = str(tmp_path / ("x" * 300 + ".png"))
+        await session.pilot.press("enter")
+        await session.settle()
+        assert isinstance(session.app.screen, Prompt)  # still open, the name there to fix
+        assert "the name is 304 bytes long; a file name here has at most 255" in \
+            session.warnings[-1]
+        assert session.app.failure is None
+
+
+# Saves that respect the file.
+
+
+async def test_saving_through_a_link_keeps_the_link(biceps, config_path):
+    link = config_path.parent / "link.toml"
+    link.symlink_to(config_path.name)
+    async with biceps(on=load_config(link)) as session:
+        await session.pilot.press("c", "ctrl+s")
+        await session.settle()
+        assert not session.app.unsaved
+    assert link.is_symlink()
+    assert load_config(config_path).arm.length == 32.9
+
+
+async def test_a_read_only_file_is_not_saved_over_and_the_edit_stays(biceps, config_path):
+    before = config_path.read_bytes()
+    config_path.chmod(0o444)
+    async with biceps() as session:
+        await session.pilot.press("c", "ctrl+s")
+        await session.settle()
+        assert session.notes[-1].title == "Not saved"
+        assert "is read-only; nothing was written" in session.notes[-1].message
+        assert session.app.unsaved
+        assert session.app.scene.arm.length == 32.9
+    assert config_path.read_bytes() == before
+    assert stat.S_IMODE(config_path.stat().st_mode) == 0o444
+
+
+async def test_a_file_changed_on_disk_is_overwritten_only_when_asked(biceps, config_path):
+    async with biceps() as session:
+        theirs = config_path.read_text().replace("length = 33.0", "length = 34.0")
+        config_path.write_text(theirs)
+        await session.pilot.press("c", "ctrl+s")
+        await session.settle()
+        assert isinstance(session.app.screen, Choice)
+        assert "changed on disk since it was opened" in \
+            str(session.app.screen.query_one("Label").render())
+        await session.pilot.press("escape")
+        await session.settle()
+        assert config_path.read_text() == theirs
+        assert session.app.unsaved
+        await session.pilot.press("ctrl+s", "o")
+        await session.settle()
+        assert not session.app.unsaved
+    assert load_config(config_path).arm.length == 32.9
+
+
+# An error that still gets through.
+
+
+class Broken(Exception):
+    pass
+
+
+async def test_an_unexpected_error_offers_to_save_the_model_it_left(config, config_path,
+                                                                    monkeypatch):
+    app = BicepsApp(config)
+    with pytest.raises(Broken):
+        async with app.run_test() as pilot:
+            await pilot.press("c")
+
+            def broken(*args):
+                raise Broken("a fault in the app")
+
+            monkeypatch.setattr(Stats, "show", broken)
+            await pilot.press("c")
+            await pilot.pause()
+    monkeypatch.undo()
+    assert app.failure == "Broken: a fault in the app"
+    assert app.return_code == 1
+    rescue = rescued(app)
+    async with rescue.run_test() as pilot:
+        await pilot.pause()
+        assert isinstance(rescue.screen, Choice)
+        assert "Broken: a fault in the app" in str(rescue.screen.query_one("Label").render())
+        await pilot.press("s")
+        await pilot.pause()
+    assert rescue.return_code == 0
+    assert load_config(config_path).arm.length == pytest.approx(32.8)  # both c, as it was
+
+
+async def test_an_unexpected_error_with_nothing_unsaved_needs_no_rescue(config, monkeypatch):
+    def broken(*args):
+        raise Broken("a fault in the app")
+
+    monkeypatch.setattr(BicepsApp, "action_help", broken)
+    app = BicepsApp(config)
+    with pytest.raises(Broken):
+        async with app.run_test() as pilot:
+            await pilot.press("question_mark")
+            await pilot.pause()
+    assert app.failure == "Broken: a fault in the app"
+    assert rescued(app) is None
+
+
+async def test_the_rescued_model_can_be_worked_on(config, monkeypatch):
+    app = BicepsApp(config)
+    app.scene = app.scene.with_arm(app.scene.arm.at_length(30.0))
+    app.failure = "Broken: a fault in the app"
+    rescue = rescued(app)
+    async with rescue.run_test() as pilot:
+        await pilot.pause()
+        await pilot.press("escape", "c")
+        assert rescue.scene.arm.length == pytest.approx(29.9)
+        assert rescue.unsaved
+        assert rescue.screen.query_one(NodeTable).row_count == 15

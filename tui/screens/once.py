@@ -1,0 +1,76 @@
+"""Dialogs that close once, and a command palette that does too.
+
+Keys come in bursts (a person pressing enter twice, a paste, a terminal catching up), and
+Textual hands each key to the widget focused when it arrives, then runs its binding on the
+screen in front when the widget gets to it. So the second enter of a quick double enter
+reaches a dialog that the first has already closed, and it closes it again: Textual's
+``Screen.dismiss`` pops whatever screen is in front, the main screen beneath if nothing
+else is left, which raises ScreenStackError and ends the app (Textual 8.2: the same in its
+own command palette, ctrl+p enter enter). A dialog here is dismissed once; the keys after
+that are dropped.
+
+The palette has a second fault, guarded here too: page down before its list has been laid
+out (ctrl+p then page down at once) looks up a line the list has not made yet, KeyError: 0.
+"""
+
+from __future__ import annotations
+
+from typing import TypeVar
+
+from textual import on
+from textual.await_complete import AwaitComplete
+from textual.binding import Binding
+from textual.command import CommandList, CommandPalette
+from textual.screen import ModalScreen, Screen
+from textual.widgets import Input, OptionList
+
+
+Result = TypeVar("Result")
+
+
+class DismissedOnce(Screen[Result]):
+    """A screen whose :meth:`dismiss` acts once, and only while it is in front."""
+
+    _dismissed = False
+
+    def dismiss(self, result: Result | None = None) -> AwaitComplete:
+        if self._dismissed or self is not self.app.screen:
+            return AwaitComplete.nothing()
+        self._dismissed = True
+        return super().dismiss(result)
+
+
+# DismissedOnce goes last among the bases: Textual takes a screen's CSS and component
+# classes from its first base and that base's first bases, which must be ModalScreen's and
+# CommandPalette's.
+
+
+class Dialog(ModalScreen[Result], DismissedOnce[Result]):
+    """A modal dialog, dismissed once."""
+
+
+class Palette(CommandPalette, DismissedOnce[None]):
+    """Textual's command palette, which runs one command, once, and pages only a list it has
+    laid out."""
+
+    BINDINGS = [
+        Binding("pagedown", "page(1)", "Next page", show=False),
+        Binding("pageup", "page(-1)", "Previous page", show=False),
+    ]
+
+    @on(Input.Submitted)
+    @on(OptionList.OptionSelected)
+    def _after_closing(self, event: Input.Submitted | OptionList.OptionSelected) -> None:
+        # The palette's own handlers run next, and would run the command again.
+        if self._dismissed:
+            event.prevent_default()
+            event.stop()
+
+    def action_page(self, direction: int) -> None:
+        commands = self.query_one(CommandList)
+        if not commands.option_count or not commands.scrollable_content_region:
+            return  # nothing listed, or not laid out yet
+        if direction > 0:
+            commands.action_page_down()
+        else:
+            commands.action_page_up()
