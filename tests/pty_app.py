@@ -75,3 +75,51 @@ def _read_until_picture(master: int, output: bytearray, deadline: float) -> None
             if time.monotonic() - quiet_since > 0.5:
                 return
     pytest.fail(f"no picture before the time limit:\n{output[-2000:]!r}")
+
+
+def converse(command: list[str], *, cwd: Path, script: list[tuple[bytes, bytes]],
+             size: tuple[int, int] = (100, 30), timeout: float = 120.0) -> Run:
+    """Start ``command`` in a terminal of ``size``; for each ``(expected, keys)`` of
+    ``script``, read until ``expected`` has been written since the last keys (and the output
+    has paused), then type ``keys``; then wait for the command to end."""
+    columns, rows = size
+    master, slave = os.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, 0, 0))
+    environment = {key: value for key, value in os.environ.items()
+                   if not key.startswith("TEXTUAL")}
+    environment.update(TERM="xterm-256color", COLORTERM="truecolor")
+    process = subprocess.Popen(command, stdin=slave, stdout=slave, stderr=slave,
+                               env=environment, cwd=cwd, start_new_session=True)
+    os.close(slave)
+    output = bytearray()
+    deadline = time.monotonic() + timeout
+    try:
+        for expected, keys in script:
+            since = len(output)
+            _read_until(master, output, deadline, lambda: expected in output[since:])
+            os.write(master, keys)
+        _read_until(master, output, deadline, lambda: process.poll() is not None)
+        return Run(bytes(output), process.wait(timeout=max(deadline - time.monotonic(), 1)))
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+        os.close(master)
+
+
+def _read_until(master: int, output: bytearray, deadline: float, done) -> None:
+    """Read into ``output`` until ``done()`` and a pause of 0.3 s, or the other side closes."""
+    quiet_since = None
+    while time.monotonic() < deadline:
+        if select.select([master], [], [], 0.05)[0]:
+            try:
+                output += os.read(master, 1 << 16)
+            except OSError:  # the terminal's other side has closed: the app is gone
+                return
+            quiet_since = None
+        elif done():
+            quiet_since = quiet_since or time.monotonic()
+            if time.monotonic() - quiet_since > 0.3:
+                return
+    pytest.fail(f"not there before the time limit:\n{output[-2000:]!r}")
+

@@ -11,11 +11,11 @@ import asyncio
 import gc
 import os
 import sys
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from functools import partial
 from pathlib import Path
 from time import monotonic
-from typing import Callable
+from typing import Awaitable, Callable
 
 import textual.constants
 from rich.console import RenderableType
@@ -29,6 +29,7 @@ from textual.message import Message
 from textual.notifications import SeverityLevel
 from textual.reactive import var
 from textual.screen import Screen
+from textual.theme import ThemeProvider
 
 from biceps.configs import FOLDER as BUNDLED_MODELS
 from biceps.engine import coldstart
@@ -61,6 +62,7 @@ from biceps.tui.commands import KeyCommands
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.history import History, Step
 from biceps.tui.pacing import Pacer, cursor_question
+from biceps.tui.rescue import Rescue, rescue_question
 from biceps.tui.parse import parse_path
 from biceps.tui.pixels import encoder_for
 from biceps.tui.screens.choice import Answer, Choice
@@ -85,20 +87,9 @@ DRAG_MOVE = 70.0  # cm per picture height
 TURN = Binding.Group("Turn", compact=True)
 
 
-@dataclass(frozen=True)
-class Rescue:
-    """What an app that ended on an error left: the model as it was, the file it came from
-    (and the scene last saved there), and the error, in a line."""
-
-    config: Config
-    scene: Scene
-    saved: Scene
-    error: str
-
-
 class QuitAsked(Message):
     """The person asked to quit; delivered behind every key they typed before (see
-    :meth:`BicepsApp.action_quit`)."""
+    :meth:`BicepsApp.action_quit_in_turn`)."""
 
 
 class BicepsApp(App[None]):
@@ -145,7 +136,8 @@ class BicepsApp(App[None]):
         Binding("ctrl+o", "open", "Open", show=False),
         Binding("question_mark,f1", "help", "Help"),
         Binding("q", "quit", "Quit"),
-        Binding("ctrl+q", "quit", "Quit", show=False, priority=True),
+        # Quits from anywhere, a dialog too: a priority binding (see action_quit_in_turn).
+        Binding("ctrl+q", "quit_in_turn", show=False, priority=True),
     ]
 
     scene: var[Scene] = var(None)
@@ -179,6 +171,7 @@ class BicepsApp(App[None]):
         self._last_recording: Recording | None = None
         self._notified_until: dict[str, float] = {}
         self._saving = asyncio.Lock()
+        self._asking = False  # a dialog is open, or about to open (see _ask)
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         # On the 'too small' screen nothing is seen to change, so nothing changes: only
@@ -211,9 +204,12 @@ class BicepsApp(App[None]):
         super().panic(*renderables)
 
     def action_command_palette(self) -> None:
-        # Textual's, guarded against two of its faults (tui/screens/once.py).
+        # Textual's palettes, guarded against its faults (tui/screens/once.py).
         if self.use_command_palette and not CommandPalette.is_open(self):
             self.push_screen(Palette(id="--command-palette"))
+
+    def search_themes(self) -> None:
+        self.push_screen(Palette(providers=[ThemeProvider], placeholder="Search for themes…"))
 
     def on_ready(self) -> None:
         # Every frame makes thousands of short-lived segments, and every so often Python
@@ -225,7 +221,7 @@ class BicepsApp(App[None]):
         if self._notice:
             self.notify(self._notice, timeout=12, markup=False)
         if self._rescue is not None:
-            self._offer_rescue()
+            self._ask(self._offer_rescue)
 
     def _display(self, screen: Screen, renderable: RenderableType | None) -> None:
         # Real pixels are painted over cells that Textual may write again without a new
@@ -381,12 +377,32 @@ class BicepsApp(App[None]):
             self.notify(f"{message.what.capitalize()}; ctrl+z undoes it", markup=False)
 
     def action_help(self) -> None:
-        if not isinstance(self.screen, HelpScreen):
+        if not self._asking and not isinstance(self.screen, HelpScreen):
             self.push_screen(HelpScreen())
 
-    @work
-    async def action_save(self) -> None:
-        await self._save_or_ask()
+    def _ask(self, dialogs: Callable[[], Awaitable[object]]) -> None:
+        """Run ``dialogs``, a coroutine function that asks in dialogs, unless others are
+        already asking.
+
+        A dialog opens when its worker runs, which is after the keys that came with its
+        key: a burst of e, ctrl+d and ctrl+o would open three dialogs on one another, and
+        since each modal screen draws the screens beneath it, a stack of them deep enough
+        exhausts Python's stack (RecursionError in Textual's compositor).
+        """
+        if self._asking:
+            return
+        self._asking = True
+
+        async def asking() -> None:
+            try:
+                await dialogs()
+            finally:
+                self._asking = False
+
+        self.run_worker(asking(), group="dialogs")
+
+    def action_save(self) -> None:
+        self._ask(self._save_or_ask)
 
     async def _save_or_ask(self) -> bool:
         """Save to the file the model came from; for the bundled model, which is part of
@@ -433,9 +449,8 @@ class BicepsApp(App[None]):
             path = Path.cwd() / path.name  # a copy of one's own, where one works
         return Field("File", printable(path), parse_path, PathSuggester((".toml",)))
 
-    @work
-    async def action_save_as(self) -> None:
-        await self._save_as()
+    def action_save_as(self) -> None:
+        self._ask(self._save_as)
 
     async def _save_as(self) -> bool:
         field = self._config_file_field()
@@ -453,8 +468,10 @@ class BicepsApp(App[None]):
             if await self._save(path):
                 return True
 
-    @work
-    async def action_open(self) -> None:
+    def action_open(self) -> None:
+        self._ask(self._open)
+
+    async def _open(self) -> None:
         answer = await self.push_screen_wait(
             Prompt("Open a configuration", [self._config_file_field()], accept="Open"))
         if answer is None:
@@ -471,11 +488,13 @@ class BicepsApp(App[None]):
         self.scene = self._saved
         self._export_path = f"{config.path.stem}.png"
 
-    @work
-    async def action_export(self) -> None:
+    def action_export(self) -> None:
+        self._ask(self._export)
+
+    async def _export(self) -> None:
         while True:
             fields = [
-                Field("File", self._export_path, parse_path, PathSuggester((".png",))),
+                Field("File", printable(self._export_path), parse_path, PathSuggester((".png",))),
                 Field("Size in pixels", self._export_size, parse_size),
             ]
             prompt = Prompt("Export a PNG", fields, accept="Export",
@@ -510,8 +529,10 @@ class BicepsApp(App[None]):
     def action_toggle_plots(self) -> None:
         self.screen_stack[0].query_one(Plots).toggle()
 
-    @work
-    async def action_record(self) -> None:
+    def action_record(self) -> None:
+        self._ask(self._record)
+
+    async def _record(self) -> None:
         recorder = self.screen_stack[0].query_one(Recorder)
         if recorder.busy is not None:
             self._refuse(f"Still recording {recorder.busy.path}; wait for it to finish")
@@ -528,10 +549,13 @@ class BicepsApp(App[None]):
         recorder.record(self.scene, recording)
 
     def action_quit(self) -> None:
-        # ctrl+q is a priority binding, run as soon as the key arrives, while keys typed
-        # before it may still be on their way through the focused widget to their
-        # bindings ("c" then ctrl+q at once). Send the request the same way, behind them,
-        # so that it finds their edits made.
+        self._quit()
+
+    def action_quit_in_turn(self) -> None:
+        # A priority binding runs as soon as its key arrives, while keys typed before it
+        # may still be on their way through the focused widget to their bindings ("c"
+        # then ctrl+q at once). Send the request the same way, behind them, so that it
+        # finds their edits made.
         (self.focused or self.screen).post_message(QuitAsked())
 
     @on(QuitAsked)
@@ -546,23 +570,10 @@ class BicepsApp(App[None]):
             return
         self.exit()
 
-    @work
     async def _offer_rescue(self) -> None:
         """Say what error ended the app before, and offer to save the model it left."""
-        question = (
-            f"biceps stopped on an error it did not expect:\n\n{printable(self._rescue.error)}"
-            f"\n\nYour model is as it was, with edits not saved to "
-            f"{printable(self.config.path.name)}. Save them before you go (escape: keep "
-            "working)."
-        )
-        answers = [
-            Answer("s", "Save, then quit", "save", "primary"),
-            Answer("a", "Save as, then quit", "save_as"),
-            Answer("q", "Quit without saving", "quit", "error"),
-        ]
         while True:
-            answer = await self.push_screen_wait(Choice("biceps ran into an error", question,
-                                                        answers))
+            answer = await self.push_screen_wait(rescue_question(self._rescue))
             if answer is None:
                 return
             if answer == "quit" or await (self._save_or_ask() if answer == "save"

@@ -31,7 +31,12 @@ def parse_path(text: str) -> Path:
     text = text.strip()
     if not text:
         raise ValueError("give a file name")
-    path = Path(text).expanduser()
+    try:
+        path = Path(text).expanduser()
+    except RuntimeError:  # ~someone, and there is no such user
+        user = text[1:].split("/", 1)[0]
+        raise ValueError(f"there is no user {shown(user)} for ~{printable(user)} to "
+                         "stand for") from None
     try:
         check_name(path)
     except FileError as error:

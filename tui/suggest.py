@@ -18,10 +18,10 @@ class PathSuggester(Suggester):
     async def get_suggestion(self, value: str) -> str | None:
         head = value[: value.rfind("/") + 1]
         start = value[len(head) :]
-        directory = Path(head).expanduser() if head else Path(".")
         try:
+            directory = Path(head).expanduser() if head else Path(".")
             entries = sorted(directory.iterdir())
-        except OSError:
+        except (OSError, RuntimeError):  # no such folder, or ~someone who does not exist
             return None
         for entry in entries:
             name = entry.name

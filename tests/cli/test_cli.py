@@ -70,6 +70,9 @@ def test_snapshot_writes_a_png_of_the_asked_size(tmp_path):
         (["--yaw", "inf"], "--yaw"),
         (["--scale", "nan"], "--scale"),
         (["--scale", "0"], "0.01 to 100"),
+        (["--scale", "1e300"], "0.01 to 100"),
+        (["--light", "1e308,0,0"], "each coordinate must be a finite number from -1e+08 to "
+                                   "1e+08 cm, not 1e+308"),
     ],
 )
 def test_snapshot_refuses_bad_arguments_and_writes_nothing(tmp_path, args, message):
@@ -232,3 +235,55 @@ def test_the_frame_rate_may_be_a_fraction():
     result = run("app", "--fps", "0")
     assert result.exit_code == 2
     assert "must be 0.1 to 1000, got '0'" in result.stderr
+
+
+ESCAPES = "x\x1b]52;c;UFdORUQ=\x07\x1b[2J"  # would set the clipboard and clear the screen
+SHOWN = r"x\x1b]52;c;UFdORUQ=\x07\x1b[2J"
+CONTROL = re.compile(r"[\x00-\x09\x0b-\x1f\x7f-\x9f]")  # all but the newline
+
+
+@pytest.mark.parametrize("command, output", [
+    ("info", None), ("snapshot", ".png"), ("export-mesh", ".obj"), ("animate", ".gif"),
+])
+def test_names_with_escape_sequences_are_printed_as_text(tmp_path, command, output):
+    config = tmp_path / f"{ESCAPES}.toml"
+    config.write_bytes(DEFAULT_CONFIG.read_bytes())
+    args = [] if output is None else ["-o", tmp_path / f"{ESCAPES}{output}"]
+    if command in ("snapshot", "animate"):
+        args += ["--size", "64x48"] + (["--frames", "2"] if command == "animate" else [])
+    result = run(command, config, *args)
+    assert result.exit_code == 0, result.output
+    assert not CONTROL.search(result.stdout + result.stderr)
+    assert f"{SHOWN}.toml" in result.stdout if output is None else \
+        f"wrote {tmp_path}/{SHOWN}{output}" in result.stderr
+
+
+def test_a_missing_file_named_with_escape_sequences_is_refused_as_text(tmp_path):
+    result = run("info", tmp_path / f"{ESCAPES}.toml")
+    assert result.exit_code == 2
+    assert result.stderr == f"biceps: {tmp_path}/{SHOWN}.toml: no such file\n"
+
+
+@pytest.mark.parametrize("command, suffix", [("snapshot", ".png"), ("export-mesh", ".obj"),
+                                             ("animate", ".gif")])
+def test_an_output_name_too_long_is_refused_before_any_work(tmp_path, command, suffix):
+    result = run(command, DEFAULT_CONFIG, "-o", tmp_path / ("x" * 300 + suffix))
+    assert result.exit_code == 2
+    assert f"the name is {300 + len(suffix)} bytes long; a file name here has at most 255" \
+        in result.stderr
+    assert "Traceback" not in result.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_info_json_is_strict_json_at_the_bounds(tmp_path):
+    path = tmp_path / "extreme.toml"
+    path.write_text("[muscle]\nlength = 33.0\nnodes = [[1e-6, 0.0], [1e4, 1e4], [1e-6, 0.0]]\n")
+    result = run("info", path, "--json")
+    assert result.exit_code == 0, result.output
+
+    def refuse(constant: str):
+        raise AssertionError(f"{constant} is not JSON")
+
+    facts = json.loads(result.stdout, parse_constant=refuse)
+    assert facts["max_radius_cm"] == 1e4
+

@@ -1,5 +1,6 @@
-"""Every bad configuration is refused by every command that reads one: exit code 2, one
-message that names the file, the field and what is allowed, no traceback, nothing written."""
+"""Every bad configuration is refused by every command that reads one (the app too, before
+it takes the terminal): exit code 2, one message that names the file, the field and what
+is allowed, no traceback, nothing written."""
 
 import os
 import re
@@ -150,6 +151,7 @@ MADE_CASES = {
 }
 
 COMMANDS = {
+    "app": lambda out: ["app"],  # refused before the terminal is touched
     "info": lambda out: ["info"],
     "snapshot": lambda out: ["snapshot", "-o", out / "arm.png", "--size", "64x48"],
     "export-mesh": lambda out: ["export-mesh", "-o", out / "arm.obj"],

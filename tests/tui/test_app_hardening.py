@@ -17,8 +17,21 @@ from biceps.tui.screens.choice import Choice
 from biceps.tui.screens.main import MainScreen
 from biceps.tui.screens.once import Palette
 from biceps.tui.screens.prompt import Prompt
+from biceps.tui.terminal_input import LenientParser, decode_leniently
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.stats import Stats
+
+
+@pytest.mark.parametrize("data, keys", [
+    (b"\xff", ["replacement_character"]),  # U+FFFD, as a terminal shows such a byte
+    (b"\xc3a", ["replacement_character", "a"]),
+    (b"\x1b[97:65;2u", []),  # the Kitty protocol's alternate keys, which it cannot read
+    (b"\x1b[:u", []),
+    (b"\x1b[97;5u", ["ctrl+a"]),  # what it can read, it reads as before
+])
+def test_the_terminal_is_read_leniently(data, keys):
+    parsed = LenientParser().feed(decode_leniently()(data) + "x")
+    assert [event.key for event in parsed][:-1] == keys  # the x after shows it is all read
 
 
 async def _burst(session, *keys: str) -> None:
@@ -46,6 +59,29 @@ async def test_a_quick_burst_of_keys_does_not_end_the_app(biceps, keys):
         assert session.app.failure is None
         assert session.app.return_code is None
         assert session.app.scene.arm.length == before.length
+
+
+async def test_a_burst_of_dialog_keys_opens_one_dialog(biceps):
+    async with biceps() as session:
+        await _burst(session, "e", "e", "ctrl+d", "ctrl+o", "f1", "e")
+        assert [type(screen).__name__ for screen in session.app.screen_stack] == \
+            ["MainScreen", "Prompt"]
+        await _burst(session, "escape")
+        await session.pilot.press("e")
+        assert isinstance(session.app.screen, Prompt)  # asking again, once the first is done
+
+
+async def test_the_theme_palette_is_guarded_too(biceps):
+    async with biceps() as session:
+        await session.pilot.press("ctrl+p", *"theme")
+        await session.settle()
+        await _burst(session, "enter", "enter")  # opens the themes' palette
+        await _burst(session, "enter", "enter", "enter", "pagedown")
+        assert session.app.failure is None
+
+
+def test_paging_a_palette_that_has_no_list_yet_does_nothing():
+    Palette().action_page(1)  # not composed: no CommandList to page (NoMatches, unguarded)
 
 
 async def test_a_double_enter_in_the_node_editor_makes_one_edit(biceps):
@@ -114,7 +150,10 @@ async def test_a_file_name_is_shown_as_it_is_written_and_does_nothing(biceps, tm
         assert session.app.return_code is None  # no click action quit it
         assert session.notes[-1].message.endswith(shown)  # "Saved ..."
         assert not any(char in note.message for note in session.notes for char in "\x1b\x07")
-        await session.pilot.press("c", "q")
+        await session.pilot.press("e")  # the export's file: named after the model
+        assert session.app.screen.query(Input).first().value == \
+            shown.removesuffix(".toml") + ".png"
+        await session.pilot.press("escape", "c", "q")
         question = session.app.screen.query_one("Label").render()
         assert str(question) == f"{shown} has unsaved edits."
 
@@ -143,6 +182,43 @@ async def test_a_file_name_too_long_is_refused_in_every_dialog(biceps, tmp_path,
         assert "the name is 304 bytes long; a file name here has at most 255" in \
             session.warnings[-1]
         assert session.app.failure is None
+
+
+def _pipe(folder: Path) -> Path:
+    path = folder / "pipe.toml"
+    os.mkfifo(path)
+    return path
+
+
+def _endless(folder: Path) -> Path:
+    path = folder / "zero.toml"
+    path.symlink_to("/dev/zero")
+    return path
+
+
+def _too_many_nodes(folder: Path) -> Path:
+    path = folder / "fine.toml"
+    path.write_text("[muscle]\nlength = 33.0\nnodes = [\n" + "[1.0, 1.0],\n" * 100_000 + "]\n")
+    return path
+
+
+@pytest.mark.parametrize("make, message", [
+    (_pipe, "pipe.toml: is a pipe (FIFO), not a regular file"),
+    (_endless, "zero.toml: is a character device, not a regular file"),
+    (_too_many_nodes, "muscle.nodes: a muscle has at most 20,000 nodes, not 100,000"),
+])
+async def test_opening_what_is_not_a_configuration_says_so_at_once(biceps, tmp_path, make,
+                                                                   message):
+    path = make(tmp_path)
+    async with biceps() as session:
+        before = session.app.scene
+        await session.pilot.press("ctrl+o")
+        session.app.screen.query_one(Input).value = str(path)
+        await session.pilot.press("enter")
+        await session.settle()
+        assert session.notes[-1].title == "Not opened"
+        assert message in session.notes[-1].message
+        assert session.app.scene is before
 
 
 # Saves that respect the file.

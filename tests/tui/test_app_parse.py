@@ -37,7 +37,12 @@ def test_a_path_expands_the_home_directory():
     assert parse_path("~/x.toml") == Path.home() / "x.toml"
 
 
-@pytest.mark.parametrize("text, reason", [("  ", "give a file name"), (".", "is a directory")])
+@pytest.mark.parametrize("text, reason", [
+    ("  ", "give a file name"),
+    (".", "is a directory"),
+    ("~nosuchuser/x.toml", "there is no user 'nosuchuser' for ~nosuchuser to stand for"),
+    ("x" * 256 + ".toml", "the name is 261 bytes long; a file name here has at most 255"),
+])
 def test_not_paths(text, reason):
     with pytest.raises(ValueError, match=reason):
         parse_path(text)
@@ -51,3 +56,4 @@ async def test_file_names_are_completed_from_their_directory(tmp_path):
     assert await suggester.get_suggestion(f"{tmp_path}/bi") == f"{tmp_path}/biceps.toml"
     assert await suggester.get_suggestion(f"{tmp_path}/co") == f"{tmp_path}/configs/"
     assert await suggester.get_suggestion(f"{tmp_path}/none/x") is None
+    assert await suggester.get_suggestion("~nosuchuser/x") is None

@@ -9,8 +9,10 @@ else is left, which raises ScreenStackError and ends the app (Textual 8.2: the s
 own command palette, ctrl+p enter enter). A dialog here is dismissed once; the keys after
 that are dropped.
 
-The palette has a second fault, guarded here too: page down before its list has been laid
-out (ctrl+p then page down at once) looks up a line the list has not made yet, KeyError: 0.
+The palette has more faults, guarded here too: page down before its list has been laid
+out (ctrl+p then page down at once) looks up a line the list has not made yet, KeyError: 0;
+and a key typed just before it closed starts a search that ends after it has gone, and
+looks for its list there, NoMatches.
 """
 
 from __future__ import annotations
@@ -58,18 +60,23 @@ class Palette(CommandPalette, DismissedOnce[None]):
         Binding("pageup", "page(-1)", "Previous page", show=False),
     ]
 
+    @on(Input.Changed)
     @on(Input.Submitted)
     @on(OptionList.OptionSelected)
-    def _after_closing(self, event: Input.Submitted | OptionList.OptionSelected) -> None:
-        # The palette's own handlers run next, and would run the command again.
+    def _after_closing(self, event: Input.Changed | Input.Submitted |
+                       OptionList.OptionSelected) -> None:
+        # Keys typed before the palette closed still reach its input. Its own handlers run
+        # next, and would run the command again, or start a search that, finishing after
+        # the palette has gone, looks for its list (NoMatches).
         if self._dismissed:
             event.prevent_default()
             event.stop()
 
     def action_page(self, direction: int) -> None:
-        commands = self.query_one(CommandList)
-        if not commands.option_count or not commands.scrollable_content_region:
+        lists = self.query(CommandList)  # none yet, or none left as the palette closes
+        if not lists or not lists[0].option_count or not lists[0].scrollable_content_region:
             return  # nothing listed, or not laid out yet
+        commands = lists[0]
         if direction > 0:
             commands.action_page_down()
         else:

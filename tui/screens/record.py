@@ -18,10 +18,11 @@ from biceps.engine.animate import FlexCycle, check_cycle
 from biceps.engine.errors import shown
 from biceps.engine.export import parse_size
 from biceps.engine.movie import ANIMATION_FORMATS, check_animation
+from biceps.engine.names import printable
 from biceps.engine.scene import Scene
 from biceps.engine.sweep import flexion_range
 from biceps.tui.parse import parse_number, parse_path
-from biceps.tui.screens.prompt import Field, Prompt
+from biceps.tui.screens.prompt import PRINTABLE, Field, Prompt
 from biceps.tui.suggest import PathSuggester
 from biceps.tui.widgets.recorder import Recording
 
@@ -72,7 +73,7 @@ class RecordPrompt(Prompt):
             last = Recording(default_path, 640, 360, FlexCycle(least, most, 60), 25.0)
         cycle = last.cycle
         fields = [
-            Field("File", str(last.path), parse_path, PathSuggester(ANIMATION_FORMATS)),
+            Field("File", printable(last.path), parse_path, PathSuggester(ANIMATION_FORMATS)),
             Field("Size in pixels", f"{last.width}x{last.height}", parse_size),
             Field("From, degrees", _exactly(cycle.start), parse_number),
             Field("To, degrees", _exactly(cycle.end), parse_number),
@@ -89,7 +90,8 @@ class RecordPrompt(Prompt):
             with Grid(classes="record-fields"):
                 for field in self._fields:
                     yield Label(field.label)
-                    yield Input(field.text, suggester=field.suggester, compact=True)
+                    yield Input(field.text, suggester=field.suggester, compact=True,
+                                restrict=PRINTABLE)
             yield Label(f"As {', '.join(ANIMATION_FORMATS)}; MP4 needs biceps[video].",
                         classes="record-note", markup=False)
             with Horizontal(classes="dialog-buttons"):

@@ -10,6 +10,8 @@ from biceps.engine.arm import Arm
 
 
 class Stats(Static):
+    _shown = False
+
     def show(self, arm: Arm) -> None:
         muscle = arm.muscle
         shortest, longest = arm.length_range()
@@ -26,7 +28,10 @@ class Stats(Static):
         table.add_row("  kept to", _kept(muscle.volume_error))
         table.add_row("max radius", f"{_number(muscle.max_radius, 3)} cm")
         table.add_row("girth", f"{_number(muscle.girth, 2)} cm")
-        self.update(table)
+        # Always the same rows in a panel of fixed width: once laid out, a new muscle
+        # needs a repaint, not a layout of the whole screen (at every step of a held key).
+        self.update(table, layout=not self._shown)
+        self._shown = True
 
 
 def _number(value: float, decimals: int) -> str:

@@ -1,0 +1,67 @@
+"""The real app in a pseudo-terminal, given what it must survive: bytes that are not UTF-8,
+a file named like an escape sequence, and an error of its own that gets through."""
+
+from __future__ import annotations
+
+import shutil
+import sys
+import textwrap
+from pathlib import Path
+
+from biceps.engine.config import DEFAULT_CONFIG, load_config
+from pty_app import UPPER_HALF, converse
+
+HELP_TITLE = b"keys and mouse"
+
+
+def _app(config: Path) -> list[str]:
+    return [sys.executable, "-m", "biceps", "app", str(config)]
+
+
+def test_bytes_and_sequences_it_cannot_read_do_not_end_the_app(config_path):
+    # A lone continuation byte, a character cut short, a lead byte before an ASCII one, a
+    # Kitty key sequence with a colon in a field; then ? (help): the app has read past
+    # them and still answers.
+    run = converse(_app(config_path), cwd=config_path.parent, script=[
+        (UPPER_HALF, b"\xff\xe2\x82\xc3\x1b[97:65;2u?"),
+        (HELP_TITLE, b"\x1b"),
+        (b"", b"q"),
+    ])
+    assert HELP_TITLE in run.output
+    assert run.exit_code == 0
+
+
+def test_a_file_named_with_escape_sequences_shows_them_as_text(tmp_path):
+    name = "x\x1b]52;c;UFdORUQ=\x07\x1b[2J.toml"  # sets the clipboard, clears the screen
+    config = tmp_path / name
+    shutil.copy(DEFAULT_CONFIG, config)
+    run = converse(_app(config), cwd=tmp_path, script=[(UPPER_HALF, b"q")])
+    assert b"\x1b]52" not in run.output  # nothing sets the terminal's clipboard
+    assert rb"x\x1b]52;c;UFdORUQ=\x07\x" in run.output  # the name as text (cut short: the
+    # panel is narrower than it)
+    assert run.exit_code == 0
+
+
+def test_an_error_that_gets_through_offers_to_save_and_ends_with_status_1(config_path):
+    # The app as installed, but with a fault in one of its keys (l: the light to the right).
+    broken = textwrap.dedent(f"""
+        import sys
+        from biceps.tui.app import BicepsApp
+
+        def broken(*args):
+            raise RuntimeError("a fault put there by the test")
+
+        BicepsApp.action_move_light = broken
+        from biceps.cli import run
+        sys.argv = ["biceps", "app", {str(config_path)!r}]
+        run()
+    """)
+    run = converse([sys.executable, "-c", broken], cwd=config_path.parent, script=[
+        (UPPER_HALF, b"c"),  # an edit, not saved
+        (b"", b"l"),  # the fault
+        (b"ran into an error", b"s"),  # the rescue: save, then quit
+    ])
+    assert b"RuntimeError: a fault put there by the test" in run.output
+    assert b"biceps: stopped on an error it did not expect" in run.output
+    assert run.exit_code == 1
+    assert load_config(config_path).arm.length == 32.9  # the edit was saved
