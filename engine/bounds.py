@@ -110,6 +110,6 @@ SCALE = Limits(0.01, 100)
 
 NODES = 20_000
 """The most nodes a muscle may have. Each node is a ring of the mesh, made again at every
-length change: at 20,000 nodes that picture takes about 0.15 s and the process 0.66 GB, at
-100,000 about 0.9 s and 2.4 GB, against 1 ms and 0.15 GB at 15 (benchmarks/app_nodes.py).
-A picture has far fewer rows of pixels than that, so more nodes could not be seen anyway."""
+length change: at 20,000 nodes that picture takes about 0.9 s and the process 0.7 GB, at
+100,000 about 6 s and 2.6 GB, against 5 ms and 0.16 GB at 15 (benchmarks/app_nodes.py). A
+picture has far fewer rows of pixels than that, so more nodes could not be seen anyway."""

@@ -19,6 +19,7 @@ from biceps.engine import coldstart
 from biceps.engine.anatomy import arm_parts, tendon_share
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, rgb
+from biceps.engine.jit import ngjit
 from biceps.engine.mesh import Mesh
 from biceps.engine.render import Renderer
 from biceps.engine.settings import RenderSettings, View
@@ -108,9 +109,25 @@ def outline(vertices: np.ndarray, directions: int = 256, stride: int = 4) -> np.
     lattice = np.column_stack([ring * np.cos(turn), height, ring * np.sin(turn)])
     some = vertices[::stride]
     centre = (some.min(axis=0) + some.max(axis=0)) / 2.0
-    # einsum, not BLAS, whose threads took tens of milliseconds to start on a busy machine.
-    reach = np.einsum("kc,cn->kn", lattice, np.ascontiguousarray((some - centre).T))
-    return some[np.unique(np.argmax(reach, axis=1))]
+    farthest = np.empty(directions, np.int64)
+    _farthest_along(lattice, np.ascontiguousarray(some - centre), farthest)
+    return some[np.unique(farthest)]
+
+
+@ngjit
+def _farthest_along(directions, points, farthest):
+    """For each of ``directions`` (k, 3), the index into ``points`` (m, 3) of the one
+    farthest along it, into ``farthest`` (k,) int64. A kernel, not numpy: einsum holds the
+    GIL for all its run, 45 ms at 5,000 nodes, and the app's keys wait that long; BLAS's
+    threads took tens of milliseconds to start on a busy machine."""
+    for k in range(directions.shape[0]):
+        x, y, z = directions[k, 0], directions[k, 1], directions[k, 2]
+        best, where = -np.inf, 0
+        for i in range(points.shape[0]):
+            reach = x * points[i, 0] + y * points[i, 1] + z * points[i, 2]
+            if reach > best:
+                best, where = reach, i
+        farthest[k] = where
 
 
 def view_camera(view: View, vertices: np.ndarray, aspect: float) -> tuple[Camera, np.ndarray]:

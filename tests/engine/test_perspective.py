@@ -132,3 +132,17 @@ def test_a_long_rod_seen_along_its_length_matches_a_finely_cut_reference(shading
     light = Light(position=(20.0, 30.0, 10.0), specular=0.5) if shading == "phong" else \
         Light(ambient=1.0, diffuse=0.0, specular=0.0)
     assert_matches_a_finely_cut_reference(rod, albedo, np.eye(4), camera, light, shading)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_the_outline_holds_the_farthest_point_along_each_direction(seed):
+    points = np.random.default_rng(seed).normal(size=(4000, 3)) * [30.0, 10.0, 5.0]
+    kept = outline(points, directions=64, stride=1)
+    index = np.arange(64) + 0.5
+    height = 1.0 - 2.0 * index / 64
+    turn = np.pi * (1.0 + 5.0**0.5) * index
+    ring = np.sqrt(1.0 - height**2)
+    lattice = np.column_stack([ring * np.cos(turn), height, ring * np.sin(turn)])
+    centre = (points.min(axis=0) + points.max(axis=0)) / 2.0
+    farthest = points[np.argmax((points - centre) @ lattice.T, axis=0)]  # every pair, plainly
+    assert sorted(map(tuple, kept)) == sorted(set(map(tuple, farthest)))
