@@ -9,8 +9,10 @@ import struct
 import subprocess
 import termios
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Iterator
 
 import pytest
 
@@ -24,11 +26,11 @@ class Run:
     exit_code: int | None  # None: still running when the test was done with it
 
 
-def first_picture(command: list[str], *, cwd: Path, size: tuple[int, int] = (100, 30),
-                  keys: bytes = b"", timeout: float = 120.0, **variables: str) -> Run:
-    """Start ``command`` in a terminal of ``size`` (columns, rows) and read until its first
-    picture is out; then type ``keys`` and wait for it to end. ``variables`` are added to
-    its environment."""
+@contextmanager
+def _terminal(command: list[str], cwd: Path, size: tuple[int, int],
+              variables: dict[str, str]) -> Iterator[tuple[subprocess.Popen, int]]:
+    """``command`` running in a new terminal of ``size`` (columns, rows), and the terminal's
+    side (the pty's master) to read it and type to it; killed, if still running, after."""
     columns, rows = size
     master, slave = os.openpty()
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, 0, 0))
@@ -38,9 +40,23 @@ def first_picture(command: list[str], *, cwd: Path, size: tuple[int, int] = (100
     process = subprocess.Popen(command, stdin=slave, stdout=slave, stderr=slave,
                                env=environment, cwd=cwd, start_new_session=True)
     os.close(slave)
-    output = bytearray()
-    deadline = time.monotonic() + timeout
     try:
+        yield process, master
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+        os.close(master)
+
+
+def first_picture(command: list[str], *, cwd: Path, size: tuple[int, int] = (100, 30),
+                  keys: bytes = b"", timeout: float = 120.0, **variables: str) -> Run:
+    """Start ``command`` in a terminal of ``size`` (columns, rows) and read until its first
+    picture is out; then type ``keys`` and wait for it to end. ``variables`` are added to
+    its environment."""
+    with _terminal(command, cwd, size, variables) as (process, master):
+        output = bytearray()
+        deadline = time.monotonic() + timeout
         _read_until_picture(master, output, deadline)
         if not keys:
             return Run(bytes(output), None)
@@ -52,11 +68,6 @@ def first_picture(command: list[str], *, cwd: Path, size: tuple[int, int] = (100
                 except OSError:  # the terminal's other side has closed: the app is gone
                     break
         return Run(bytes(output), process.wait(timeout=max(deadline - time.monotonic(), 1)))
-    finally:
-        if process.poll() is None:
-            process.kill()
-            process.wait()
-        os.close(master)
 
 
 def _read_until_picture(master: int, output: bytearray, deadline: float) -> None:
@@ -82,29 +93,15 @@ def converse(command: list[str], *, cwd: Path, script: list[tuple[bytes, bytes]]
     """Start ``command`` in a terminal of ``size``; for each ``(expected, keys)`` of
     ``script``, read until ``expected`` has been written since the last keys (and the output
     has paused), then type ``keys``; then wait for the command to end."""
-    columns, rows = size
-    master, slave = os.openpty()
-    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, 0, 0))
-    environment = {key: value for key, value in os.environ.items()
-                   if not key.startswith("TEXTUAL")}
-    environment.update(TERM="xterm-256color", COLORTERM="truecolor")
-    process = subprocess.Popen(command, stdin=slave, stdout=slave, stderr=slave,
-                               env=environment, cwd=cwd, start_new_session=True)
-    os.close(slave)
-    output = bytearray()
-    deadline = time.monotonic() + timeout
-    try:
+    with _terminal(command, cwd, size, {}) as (process, master):
+        output = bytearray()
+        deadline = time.monotonic() + timeout
         for expected, keys in script:
             since = len(output)
             _read_until(master, output, deadline, lambda: expected in output[since:])
             os.write(master, keys)
         _read_until(master, output, deadline, lambda: process.poll() is not None)
         return Run(bytes(output), process.wait(timeout=max(deadline - time.monotonic(), 1)))
-    finally:
-        if process.poll() is None:
-            process.kill()
-            process.wait()
-        os.close(master)
 
 
 def _read_until(master: int, output: bytearray, deadline: float, done) -> None:
