@@ -443,7 +443,8 @@ def _located(path: Path, source: str, location: tuple, message: str) -> str:
     return f"{where}: {dotted}: {message}" if dotted else f"{where}: {message}"
 
 
-_TABLE_HEADER = re.compile(r"^\s*\[\[?\s*([^\]#]+?)\s*\]")
+# A header is alone on its line, so a node written [0.35, 0.0], inside a list is not one.
+_TABLE_HEADER = re.compile(r"^\s*\[\[?\s*([A-Za-z0-9_\-.\"' ]+?)\s*\]\]?\s*(?:#.*)?$")
 _ASSIGNMENT = re.compile(r"^\s*([A-Za-z0-9_\-.\"' ]+?)\s*=")
 
 

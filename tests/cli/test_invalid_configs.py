@@ -17,6 +17,8 @@ INVALID = Path(__file__).resolve().parents[1] / "invalid_configs"
 
 # Each broken file in tests/invalid_configs, and what the message must say about it.
 INVALID_CASES = {
+    "after_a_list_of_nodes.toml": ":9: muscle.max_length: must be a finite number above 0 cm "
+                                  "(found 'long')",
     "all_zero_growth.toml": ":3: muscle.nodes: at least one node needs a growth of 1e-06 or "
                             "more",
     "bad_colour.toml": ":6: render.muscle_colour: should be a colour written #rrggbb (found 'red')",
