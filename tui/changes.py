@@ -124,8 +124,12 @@ def with_node(muscle: Muscle, index: int, radius: float, growth: float) -> Muscl
 
     A value equal to the current one is left alone, so confirming an untouched edit does
     not redefine the muscle's rest shape. A value outside :func:`node_bounds` is refused,
-    saying what is allowed.
+    saying what is allowed. The node may be gone by the time the edit comes (deleted by a
+    key typed while the dialog was open): that is refused too.
     """
+    if not 0 <= index < muscle.node_count:
+        raise RefusedChange(f"node {index + 1} is no longer there: the muscle has "
+                            f"{muscle.node_count} nodes now")
     for name, value in (("radius", radius), ("growth", growth)):
         low, high, unit = node_bounds()[name]
         # (Zero and below: the muscle itself says what a radius and a growth must be.)

@@ -92,3 +92,11 @@ def test_scaling_up_and_down_comes_back_to_a_round_number(scene):
     bigger = zoomed(zoomed(scene, 1), 1)
     assert bigger.view.scale == 1.21
     assert zoomed(zoomed(bigger, -1), -1).view.scale == 1.0
+
+
+def test_an_edit_of_a_node_that_has_gone_since_is_refused(scene):
+    muscle = scene.arm.muscle.without_node(14)  # deleted while the node's dialog was open
+    with pytest.raises(RefusedChange, match="node 15 is no longer there: the muscle has 14 "
+                                            "nodes now"):
+        with_node(muscle, 14, 1.0, 1.0)
+

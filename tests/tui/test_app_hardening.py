@@ -327,3 +327,21 @@ async def test_the_rescued_model_can_be_worked_on(config, monkeypatch):
         assert rescue.scene.arm.length == pytest.approx(29.9)
         assert rescue.unsaved
         assert rescue.screen.query_one(NodeTable).row_count == 15
+
+
+async def test_a_node_deleted_while_its_dialog_is_open_is_not_edited(biceps):
+    async with biceps() as session:
+        table = session.app.screen.query_one(NodeTable)
+        table.focus()
+        table.move_cursor(row=14)
+        await session.pilot.press("enter")
+        # A delete that was on its way when the dialog opened (found by the fuzz test).
+        table.post_message(NodeTable.ChangeRequested(lambda muscle: muscle.without_node(14),
+                                                     "node 15 deleted"))
+        await session.settle()
+        session.app.screen.query(Input).first().value = "1.0"
+        await session.pilot.press("enter")
+        await session.settle()
+        assert session.app.failure is None
+        assert session.app.scene.arm.muscle.node_count == 14
+        assert "node 15 is no longer there" in session.warnings[-1]
