@@ -424,10 +424,11 @@ def _unknown_key_message(location: tuple) -> str:
     allowed = list(model.model_fields) if model is not None else []
     message = f"unknown key {printable(repr(key))}"
     close = difflib.get_close_matches(str(key), allowed, n=1)
-    if close:
-        message += f" (did you mean {close[0]!r}?)"
     if parents and key in ConfigFile.model_fields:
+        # Rather than a near name by its letters (skeleton is not pose_flexion misspelt).
         message += f" ([{key}] is a table of its own: write its keys under a [{key}] header)"
+    elif close:
+        message += f" (did you mean {close[0]!r}?)"
     if allowed:
         message += f"; allowed here: {', '.join(allowed)}"
     return message
