@@ -34,16 +34,6 @@ VOLUME_TOLERANCE = 1e-12
 """The largest relative volume error a length change may leave (SPEC 2.2)."""
 
 
-def thinnest_radius() -> float:
-    """The smallest radius (cm) the model takes: a stretch stops where a node thins to it.
-
-    The lower bound the shared bounds give a radius (engine/bounds.py, from the hardening
-    issue), so that a file, a dialog and a stretch agree: to be read from there once it is
-    on main.
-    """
-    return 1e-6
-
-
 def frusta_sum(radii: np.ndarray) -> float:
     """``Q(R) = sum (r_i^2 + r_i r_{i+1} + r_{i+1}^2) / 3``: the frusta volume over ``pi dx``.
 
@@ -108,8 +98,10 @@ class _VolumeLaw:
                 steps[growing] = (radius - radii[growing]) / growth[growing]
             return steps
 
-        # A hair above the bound, so that rounding in the solve cannot take it below.
-        limits, thinnest = reaching(0.0), reaching(thinnest_radius() * (1.0 + 1e-6))
+        # A stretch stops where a node thins to the smallest radius the model takes (the
+        # bound a file and a dialog give a radius), a hair above it, so that rounding in the
+        # solve cannot take it below.
+        limits, thinnest = reaching(0.0), reaching(RADIUS.low * (1.0 + 1e-6))
         thin = int(np.argmax(thinnest))
         # Plain floats: the solver evaluates these a few times per change, and numpy's
         # per-call overhead on two-element arrays would dominate it.
@@ -343,6 +335,7 @@ class Muscle:
                 f"a node goes between two neighbours: pick node 1 to {self.node_count - 1}, "
                 f"not {index + 1}"
             )
+        _check_count(self.node_count + 1, "another node")
         radii = np.insert(self.radii, index + 1, self.radii[index : index + 2].mean())
         growth = np.insert(self.growth, index + 1, self.growth[index : index + 2].mean())
         return self._redefined(radii, growth)
@@ -361,10 +354,7 @@ class Muscle:
         shape and the volume are unchanged.
         """
         count = 2 * self.node_count - 1
-        if count > NODES:
-            raise RefusedChange(
-                f"subdividing would make {count:,} nodes; a muscle has at most {NODES:,}"
-            )
+        _check_count(count, "subdividing")
         radii = np.empty(count)
         growth = np.empty(count)
         radii[0::2], growth[0::2] = self.radii, self.growth
@@ -382,6 +372,14 @@ class Muscle:
     def _check_index(self, index: int) -> None:
         if not 0 <= index < self.node_count:
             raise RefusedChange(f"there is no node {index + 1}: nodes are 1 to {self.node_count}")
+
+
+def _check_count(count: int, doing: str) -> None:
+    if count > NODES:
+        raise RefusedChange(
+            f"{doing} would make {count:,} nodes; a muscle has at most {NODES:,}, more than a "
+            "picture can show apart, each a ring of its mesh"
+        )
 
 
 def _check_profile(

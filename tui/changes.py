@@ -11,7 +11,7 @@ import numpy as np
 
 from biceps.engine.arm import Arm
 from biceps.engine.errors import RefusedChange
-from biceps.engine.muscle import Muscle, thinnest_radius
+from biceps.engine.muscle import Muscle
 from biceps.engine.scene import Scene
 
 TURN_STEP = 5.0  # degrees per key press
@@ -94,24 +94,6 @@ def length_changed(arm: Arm, change: float) -> tuple[Arm, str | None]:
     return arm.towards(_tidy(arm.length + change))
 
 
-def node_bounds() -> dict[str, tuple[float, float, str]]:
-    """What a person may type for a node, ``{name: (lowest, highest, unit)}``: what the model
-    computes and draws. A radius of 1e9 cm overflows the volume's arithmetic and the picture.
-
-    These are the bounds the shared bounds module (engine/bounds.py, from the hardening
-    issue) sets for a configuration's nodes, to be read from it once it is on main, so that
-    one set serves both; the lowest radius is the one a stretch stops at.
-    """
-    return {"radius": (thinnest_radius(), 1e4, " cm"), "growth": (0.0, 1e4, "")}
-
-
-def most_nodes() -> int:
-    """The most nodes a muscle may have (the shared bounds' too): each is a ring of the
-    picture's mesh, and beyond this a frame takes seconds while the picture cannot show
-    them apart."""
-    return 20_000
-
-
 SLOW_NODES = 5_000
 """Nodes beyond which the picture follows a change of length slowly: each change rebuilds a
 mesh of that many rings, lying on the bones (0.17 s a frame at 3,585 nodes, 0.3 s at 7,169,
@@ -123,47 +105,18 @@ def with_node(muscle: Muscle, index: int, radius: float, growth: float) -> Muscl
     """The muscle with node ``index`` (0-based) at ``radius`` cm and ``growth``.
 
     A value equal to the current one is left alone, so confirming an untouched edit does
-    not redefine the muscle's rest shape. A value outside :func:`node_bounds` is refused,
-    saying what is allowed. The node may be gone by the time the edit comes (deleted by a
-    key typed while the dialog was open): that is refused too.
+    not redefine the muscle's rest shape; the muscle refuses a value outside the bounds
+    (engine/bounds.py), saying what is allowed. The node may be gone by the time the edit
+    comes (deleted by a key typed while the dialog was open): that is refused too.
     """
     if not 0 <= index < muscle.node_count:
         raise RefusedChange(f"node {index + 1} is no longer there: the muscle has "
                             f"{muscle.node_count} nodes now")
-    for name, value in (("radius", radius), ("growth", growth)):
-        low, high, unit = node_bounds()[name]
-        # (Zero and below: the muscle itself says what a radius and a growth must be.)
-        if value > high or 0 < value < low:
-            more = "more" if value > high else "less"
-            raise RefusedChange(
-                f"node {index + 1}: a {name} of {value:g}{unit} is {more} than the model can "
-                f"compute and draw; it takes {low:g} to {high:g}{unit}"
-            )
     if radius != muscle.radii[index]:
         muscle = muscle.with_radius(index, radius)
     if growth != muscle.growth[index]:
         muscle = muscle.with_growth(index, growth)
     return muscle
-
-
-def subdivided(muscle: Muscle) -> Muscle:
-    """:meth:`Muscle.subdivided`, within :func:`most_nodes`."""
-    _check_count(2 * muscle.node_count - 1, "subdividing")
-    return muscle.subdivided()
-
-
-def with_node_inserted(muscle: Muscle, index: int) -> Muscle:
-    """:meth:`Muscle.with_node_inserted`, within :func:`most_nodes`."""
-    _check_count(muscle.node_count + 1, "another node")
-    return muscle.with_node_inserted(index)
-
-
-def _check_count(count: int, doing: str) -> None:
-    if count > most_nodes():
-        raise RefusedChange(
-            f"{doing} would make {count:,} nodes; a muscle has at most {most_nodes():,}, "
-            "more than a picture can show apart, each a ring of its mesh"
-        )
 
 
 def has_unsaved_edits(scene: Scene, saved: Scene) -> bool:

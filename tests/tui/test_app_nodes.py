@@ -187,10 +187,11 @@ async def test_the_numbers_say_what_the_volume_is_and_how_closely_it_is_kept(bic
 
 
 @pytest.mark.parametrize(("radius", "growth", "complaint"), [
-    ("1e9", "2.05", "node 8: a radius of 1e+09 cm is more than the model can compute and draw; "
-                    "it takes 1e-06 to 10000 cm"),
-    ("1e-9", "2.05", "node 8: a radius of 1e-09 cm is less than the model can compute"),
-    ("2.08", "1e5", "node 8: a growth of 100000 is more than the model can compute"),
+    # The bounds a file's nodes have too (engine/bounds.py), in the same words.
+    ("1e9", "2.05", "node 8: radius must be a finite number from 1e-06 to 10000 cm, "
+                    "not 1000000000.0"),
+    ("1e-9", "2.05", "node 8: radius must be a finite number from 1e-06 to 10000 cm, not 1e-09"),
+    ("2.08", "1e5", "node 8: growth must be a finite number from 0 to 10000, not 100000.0"),
 ])
 async def test_a_value_the_model_cannot_draw_is_refused_saying_what_it_takes(
     biceps, radius, growth, complaint
@@ -206,7 +207,7 @@ async def test_a_value_the_model_cannot_draw_is_refused_saying_what_it_takes(
 async def test_subdividing_says_when_the_picture_will_be_slow_and_stops_at_the_most_nodes(
     biceps, monkeypatch
 ):
-    monkeypatch.setattr("biceps.tui.changes.most_nodes", lambda: 200)
+    monkeypatch.setattr("biceps.engine.muscle.NODES", 200)
     async with biceps() as session:
         monkeypatch.setattr("biceps.tui.app.SLOW_NODES", 50)
         await session.pilot.press("tab", "slash", "slash")

@@ -18,8 +18,9 @@ from textual.reactive import reactive
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
+from biceps.engine.bounds import GROWTH, RADIUS, Limits
 from biceps.engine.muscle import Muscle
-from biceps.tui.changes import node_bounds, subdivided, with_node, with_node_inserted
+from biceps.tui.changes import with_node
 from biceps.tui.parse import parse_number
 from biceps.tui.screens.prompt import Field, Prompt
 
@@ -200,16 +201,15 @@ class NodeTable(ScrollView, can_focus=True):
                 self._request(lambda current: with_node(current, index, radius, growth),
                               f"node {index + 1} edited")
 
-        bounds = node_bounds()
         fields = [
-            _number_field(f"Radius ({_range(*bounds['radius'])})", muscle.radii[index]),
-            _number_field(f"Growth ({_range(*bounds['growth'])})", muscle.growth[index]),
+            _number_field(f"Radius ({_range(RADIUS)})", muscle.radii[index]),
+            _number_field(f"Growth ({_range(GROWTH)})", muscle.growth[index]),
         ]
         self.app.push_screen(Prompt(f"Node {index + 1}", fields, check=check), request)
 
     def action_insert_node(self) -> None:
         index = self.cursor_row
-        self._request(lambda current: with_node_inserted(current, index),
+        self._request(lambda current: current.with_node_inserted(index),
                       f"a node inserted after node {index + 1}")
 
     def action_delete_node(self) -> None:
@@ -218,7 +218,7 @@ class NodeTable(ScrollView, can_focus=True):
                       undoable_note=True)
 
     def action_subdivide(self) -> None:
-        self._request(subdivided, "every segment subdivided")
+        self._request(Muscle.subdivided, "every segment subdivided")
 
     def _request(self, change: Callable[[Muscle], Muscle], what: str,
                  undoable_note: bool = False) -> None:
@@ -229,8 +229,8 @@ def _cells(number: int, at: float, radius: float, growth: float) -> tuple[str, .
     return f"{number}", f"{at:.2f}", f"{radius:.3f}", f"{growth:.3f}"
 
 
-def _range(low: float, high: float, unit: str) -> str:
-    return f"{low:g} to {high:g}{unit}"
+def _range(limits: Limits) -> str:
+    return f"{limits.low:g} to {limits.high:g}{limits.unit}"
 
 
 def _number_field(label: str, value: float) -> Field[float]:
