@@ -18,6 +18,7 @@ from PIL import Image, features
 from biceps.engine.errors import BicepsError
 from biceps.engine.export import PNG_COMPRESS_LEVEL, check_writable
 from biceps.engine.files import write_atomically
+from biceps.engine.names import printable
 
 ANIMATION_FORMATS = (".gif", ".apng", ".webp", ".mp4")
 
@@ -48,16 +49,16 @@ def check_animation(path: Path, width: int, height: int, fps: float) -> None:
     suffix = path.suffix.lower()
     if suffix == ".gif" and fps > GIF_MOST_FPS:
         raise BicepsError(
-            f"{path}: a GIF plays at most {GIF_MOST_FPS:g} frames a second (browsers slow "
+            f"{printable(path)}: a GIF plays at most {GIF_MOST_FPS:g} frames a second (browsers slow "
             f"down shorter delays), not {fps:g}; lower --fps, or write .apng, .webp or .mp4"
         )
     if suffix == ".webp" and not features.check("webp"):
-        raise BicepsError(f"{path}: this Pillow was built without WebP; write .gif or .apng")
+        raise BicepsError(f"{printable(path)}: this Pillow was built without WebP; write .gif or .apng")
     if suffix == ".mp4":
         _check_mp4_encoder(path)
         if width % 2 or height % 2:
             raise BicepsError(
-                f"{path}: MP4 video needs an even width and height, not {width}x{height}"
+                f"{printable(path)}: MP4 video needs an even width and height, not {width}x{height}"
             )
 
 
@@ -123,13 +124,13 @@ def _check_mp4_encoder(path: Path) -> None:
         import av
     except ImportError:
         raise BicepsError(
-            f"{path}: writing MP4 needs PyAV, which is not installed; it comes with the "
+            f"{printable(path)}: writing MP4 needs PyAV, which is not installed; it comes with the "
             f"optional extra 'video': {VIDEO_EXTRA}"
         ) from None
     try:
         av.Codec(MP4_CODEC, "w")
     except ValueError:  # an FFmpeg built without it
-        raise BicepsError(f"{path}: this PyAV's FFmpeg has no {MP4_CODEC} (H.264) encoder; "
+        raise BicepsError(f"{printable(path)}: this PyAV's FFmpeg has no {MP4_CODEC} (H.264) encoder; "
                           "write .gif, .apng or .webp") from None
 
 

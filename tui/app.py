@@ -327,7 +327,7 @@ class BicepsApp(App[None]):
         self.notify(f"{done}: {step.what}", markup=False)
 
     def action_revert(self) -> None:
-        name = self.config.path.name
+        name = printable(self.config.path.name)
         if not self.unsaved:
             self.notify(f"Nothing to revert: the model is as {name} has it", markup=False)
             return
@@ -535,7 +535,7 @@ class BicepsApp(App[None]):
     async def _record(self) -> None:
         recorder = self.screen_stack[0].query_one(Recorder)
         if recorder.busy is not None:
-            self._refuse(f"Still recording {recorder.busy.path}; wait for it to finish")
+            self._refuse(f"Still recording {printable(recorder.busy.path)}; wait for it to finish")
             return
         default = Path(f"{self.config.path.stem}-flex.gif")
         while True:

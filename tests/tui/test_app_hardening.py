@@ -4,12 +4,13 @@ is inert; a save respects the file; an error that still gets through offers to s
 import os
 import shutil
 import stat
+import threading
 from pathlib import Path
 
 import pytest
 from textual import events
 from textual.content import Content
-from textual.widgets import Input
+from textual.widgets import Input, Label
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.tui.app import BicepsApp, rescued
@@ -19,6 +20,7 @@ from biceps.tui.screens.once import Palette
 from biceps.tui.screens.prompt import Prompt
 from biceps.tui.terminal_input import LenientParser, decode_leniently
 from biceps.tui.widgets.node_table import NodeTable
+from biceps.tui.widgets.recorder import Recorder
 from biceps.tui.widgets.stats import Stats
 
 
@@ -345,3 +347,28 @@ async def test_a_node_deleted_while_its_dialog_is_open_is_not_edited(biceps):
         assert session.app.failure is None
         assert session.app.scene.arm.muscle.node_count == 14
         assert "node 15 is no longer there" in session.warnings[-1]
+
+
+async def test_a_recording_named_like_markup_is_shown_as_written(biceps, tmp_path, monkeypatch):
+    release = threading.Event()
+    monkeypatch.setattr("biceps.tui.widgets.recorder.write_animation",
+                        lambda *args, **kwargs: release.wait(timeout=60))
+    async with biceps() as session:
+        await session.pilot.press("v")
+        await session.pilot.pause()
+        values = [str(tmp_path / "[b]x.gif"), "32x24", "0", "130", "2", "25", "bounce"]
+        for box, value in zip(session.app.screen.query(Input), values):
+            box.value = value
+        await session.pilot.press("enter")
+        await session.pilot.pause()
+        label = session.app.screen.query_one(Recorder).query_one(Label)
+        try:
+            for _ in range(500):  # until it says what it records
+                if "Recording" in str(label.render()):
+                    break
+                await session.pilot.pause(0.01)
+            shown = label.render()
+            assert str(shown).startswith("Recording [b]x.gif: ")
+            assert not any(span.style for span in getattr(shown, "spans", []))  # no bold
+        finally:
+            release.set()

@@ -13,6 +13,7 @@ from pathlib import Path
 from textual import work
 from textual.app import ComposeResult
 from textual.containers import Horizontal
+from textual.content import Content
 from textual.message import Message
 from textual.widgets import Label, ProgressBar
 from textual.worker import get_current_worker
@@ -20,6 +21,7 @@ from textual.worker import get_current_worker
 from biceps.engine.animate import FlexCycle, render_cycle
 from biceps.engine.errors import BicepsError
 from biceps.engine.movie import Progress, write_animation
+from biceps.engine.names import printable
 from biceps.engine.scene import Scene
 
 
@@ -34,7 +36,7 @@ class Recording:
     fps: float
 
     def __str__(self) -> str:
-        return (f"{self.path} ({self.width}x{self.height}, {self.cycle.frames} frames at "
+        return (f"{printable(self.path)} ({self.width}x{self.height}, {self.cycle.frames} frames at "
                 f"{self.fps:g} a second)")
 
 
@@ -71,7 +73,7 @@ class Recorder(Horizontal):
     def record(self, scene: Scene, recording: Recording) -> None:
         """Start writing ``recording`` of ``scene`` (not while another is being written)."""
         if self._recording is not None:
-            raise BicepsError(f"still recording {self._recording.path}; wait for it to finish")
+            raise BicepsError(f"still recording {printable(self._recording.path)}; wait for it to finish")
         self._recording = recording
         self.add_class("-busy")
         self._show("rendering", 0, len(recording.cycle.poses()))
@@ -118,5 +120,7 @@ class Recorder(Horizontal):
             self.notify(message.note, markup=False)
 
     def _show(self, stage: str, done: int, total: int) -> None:
-        self.query_one(Label).update(f"Recording {self._recording.path.name}: {stage}")
+        # Content, not a str, which a Label reads as markup: a file may be named [b]x.gif.
+        name = printable(self._recording.path.name)
+        self.query_one(Label).update(Content(f"Recording {name}: {stage}"))
         self.query_one(ProgressBar).update(total=total, progress=done)
