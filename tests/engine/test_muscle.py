@@ -132,10 +132,16 @@ def test_an_invalid_profile_is_refused_with_the_node(radii, growth, message):
 @pytest.mark.parametrize("nodes", [2, 5000])
 def test_the_extremes_inside_the_bounds_change_length_at_constant_volume(radius, nodes):
     muscle = Muscle.of([radius] * nodes, [radius] * nodes, 10.0)
-    for length in (5.0, 20.0, 10.0):
+    # A stretch stops where a node would thin past the lowest radius: at the lowest, there
+    # is no stretching, only contracting and back.
+    lengths = (5.0, 10.0) if radius == RADIUS.low else (5.0, 20.0, 10.0)
+    for length in lengths:
         muscle = muscle.at_length(length)
         assert muscle.volume_error < 1e-12
     assert np.array_equal(muscle.radii, muscle.reference_radii)
+    if radius == RADIUS.low:
+        with pytest.raises(RefusedChange, match="longest this muscle can be"):
+            muscle.at_length(10.5)
 
 
 def test_subdividing_past_the_most_nodes_is_refused():
