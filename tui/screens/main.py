@@ -128,7 +128,7 @@ class MainScreen(Screen[None]):
         # screen refreshes only once the keys waiting have been handled.
         if scene.arm != self._arm and not self._numbers_due:
             self._numbers_due = True
-            self.call_after_refresh(self._show_numbers)
+            self.app.call_later(self._show_numbers)
 
     def _show_numbers(self) -> None:
         self._numbers_due = False
