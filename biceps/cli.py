@@ -30,7 +30,7 @@ from biceps.configs import DEFAULT as DEFAULT_CONFIG
 from biceps.engine.bounds import COORDINATE, SCALE, OutOfBounds, finite
 from biceps.engine.errors import BicepsError
 from biceps.engine.names import printable
-from biceps.engine.settings import Graphics
+from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Graphics
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
@@ -335,7 +335,8 @@ def view_options(command: Callable) -> Callable:
         click.option("--scale", type=_FiniteFloat(SCALE.low, SCALE.high), help="Zoom factor."),
         click.option("--light", callback=_parse_point, metavar="X,Y,Z",
                      help="Light position in world space, cm."),
-        click.option("--ssaa", type=click.IntRange(1, 4), help="Supersampling factor, 1 to 4."),
+        click.option("--ssaa", type=click.IntRange(SUPERSAMPLING.low, SUPERSAMPLING.high),
+                     help=f"Supersampling factor, {SUPERSAMPLING}."),
         click.option("--shading", type=click.Choice(["gouraud", "phong"]), help="Shading model."),
     ]
     for option in reversed(options):
@@ -493,7 +494,8 @@ def _progress_bar(label: str, total: int) -> Iterator[Progress]:
 @config_argument
 @click.option("-o", "--output", required=True, type=click.Path(path_type=Path),
               help="The file to write: .obj, .stl, .ply or .glb.")
-@click.option("--segments", type=click.IntRange(3, 1024), help="Vertices around each axis.")
+@click.option("--segments", type=click.IntRange(SEGMENTS.low, SEGMENTS.high),
+              help="Vertices around each axis.")
 @pose_options
 @_refusals_exit_2
 def export_mesh(config: Path, output: Path, segments: int | None, length: float | None,
