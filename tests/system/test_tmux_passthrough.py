@@ -66,6 +66,10 @@ def test_kitty_images_go_through_tmux_placed_by_placeholders(tmp_path):
         # a placeholder, then again with each diacritic, backing up over it.)
         assert re.search(rb"\x1b\[38;5;" + image_id + rb"m" + PLACEHOLDER, output)
     finally:
+        # The client is all this process started: the server it forked lives on, with the
+        # app, in a session of its own, until told to stop.
+        subprocess.run(["tmux", "-S", str(tmp_path / "socket"), "kill-server"],
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         if tmux.poll() is None:
             os.killpg(tmux.pid, 9)
         tmux.wait()
