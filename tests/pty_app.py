@@ -36,7 +36,7 @@ def _terminal(command: list[str], cwd: Path, size: tuple[int, int],
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, 0, 0))
     environment = {key: value for key, value in os.environ.items()
                    if not key.startswith("TEXTUAL")}
-    environment.update(TERM="xterm-256color", COLORTERM="truecolor", **variables)
+    environment.update({"TERM": "xterm-256color", "COLORTERM": "truecolor", **variables})
     process = subprocess.Popen(command, stdin=slave, stdout=slave, stderr=slave,
                                env=environment, cwd=cwd, start_new_session=True)
     os.close(slave)

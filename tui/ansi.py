@@ -17,6 +17,7 @@ from PIL import Image
 from rich.console import Console
 from rich_pixels import Pixels
 
+from biceps.tui.detect import colour_system
 from biceps.tui.palette import Palette256
 
 
@@ -25,14 +26,13 @@ def print_picture(render: Callable[[int, int], np.ndarray], background: tuple[in
     """Render at ``size`` pixels (``width x height``; default: the terminal's width at 16:9)
     and print it, two pixels a cell, stacked. ``background`` is the picture's background
     colour; ``colors`` is ``auto``, ``truecolor`` or ``256``."""
-    console = Console(force_terminal=True, color_system=colors)
     if size is None:
-        width = max(console.width, 8)
+        width = max(Console(force_terminal=True).width, 8)
         # A cell is about twice as tall as wide, so square pixels give cells of 1 x 2 pixels.
         size = width, max(2 * round(width * 9 / 16 / 2), 2)
     width, height = size
-    system = console.color_system if console.color_system in ("truecolor", "256") else "256"
-    console = Console(force_terminal=True, color_system=system, width=width)  # no wrapping
+    console = Console(force_terminal=True, color_system=colour_system(colors),
+                      width=width)  # no wrapping
     frame = render(width, height + height % 2)  # whole cells
     if console.color_system == "256":
         frame = Palette256().mapped(frame, background)

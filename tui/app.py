@@ -626,11 +626,11 @@ def run_app(config: Config, colors: str = "auto", fps: float | None = None,
 
     Returns the exit status: 0, or 1 if the app ended on an error, after offering to save
     the model it had (:func:`rescued`)."""
-    if colors != "auto":
-        os.environ["TEXTUAL_COLOR_SYSTEM"] = colors
-        # Textual reads the variable once, when it is first imported, which has happened
-        # by now; its console takes the colour system from this constant.
-        textual.constants.COLOR_SYSTEM = colors
+    colors = detect.colour_system(colors)
+    os.environ["TEXTUAL_COLOR_SYSTEM"] = colors
+    # Textual reads the variable once, when it is first imported, which has happened by
+    # now; its console takes the colour system from this constant.
+    textual.constants.COLOR_SYSTEM = colors
     # Asked before Textual takes the terminal (its input thread would take the answers); not
     # at all when the command line says half-blocks, so nothing is written but the app.
     asked = graphics or config.render.graphics

@@ -44,6 +44,8 @@ import tty
 from dataclasses import dataclass, field
 from typing import Mapping
 
+from rich.console import Console
+
 ANSWER_TIME = 2.0  # seconds to wait for a terminal that does not answer at all
 DEFAULT_CELL = (10, 20)  # pixels, when the terminal does not say
 QUESTIONS = (
@@ -252,13 +254,38 @@ def _cell(answers: Answers) -> tuple[tuple[int, int], str]:
     if answers.cell:
         return answers.cell, "cell size from the terminal (CSI 16 t)"
     columns, rows, width, height = answers.size or (*shutil.get_terminal_size(), 0, 0)
-    if answers.window and answers.window[0] // columns and answers.window[1] // rows:
-        cell = answers.window[0] // columns, answers.window[1] // rows
+    if answers.window and (cell := _per_cell(answers.window, columns, rows)):
         return cell, "cell size from the window's (CSI 14 t)"
-    if width // columns and height // rows:
-        return (width // columns, height // rows), "cell size from the kernel's (TIOCGWINSZ)"
+    if cell := _per_cell((width, height), columns, rows):
+        return cell, "cell size from the kernel's (TIOCGWINSZ)"
     width, height = DEFAULT_CELL
     return DEFAULT_CELL, f"the terminal did not say its cell size: {width}x{height} assumed"
+
+
+def colour_system(asked: str = "auto", environ: Mapping[str, str] = os.environ) -> str:
+    """The colours the picture goes out in, ``truecolor`` or ``256``, for ``asked`` (the
+    command line's ``--colors``). ``auto`` takes TEXTUAL_COLOR_SYSTEM if it is set, else what
+    Rich reads from COLORTERM and TERM, but never fewer than 256 colours: Rich reads
+    TERM=xterm, Debian's xterm's own and a common one over SSH, as 16, in which the shaded
+    muscle is a flat yellow stick, while xterm has had 256 since 1999 (patch 111) and every
+    terminal in use has them."""
+    if asked != "auto":
+        return asked
+    chosen = environ.get("TEXTUAL_COLOR_SYSTEM", "auto")
+    if chosen in ("truecolor", "256"):
+        return chosen
+    found = Console(force_terminal=True, color_system="auto", _environ=dict(environ))
+    return "truecolor" if found.color_system == "truecolor" else "256"
+
+
+def _per_cell(pixels: tuple[int, int], columns: int, rows: int) -> tuple[int, int] | None:
+    """Pixels per cell, or None if they round to nothing or the size in cells is unknown:
+    a pseudo-terminal nobody gave a size (``script`` into a pipe, some editors' shells)
+    says 0 columns and 0 rows."""
+    if columns <= 0 or rows <= 0:
+        return None
+    cell = pixels[0] // columns, pixels[1] // rows
+    return cell if all(cell) else None
 
 
 def hint(choice: Choice) -> str | None:
@@ -297,7 +324,7 @@ def report(asked: str, answers: Answers | None, place: Place, choice: Choice) ->
                   + (f", {a.colour_registers} colour registers" if a.colour_registers else "")),
         ("cell size", f"{choice.cell[0]}x{choice.cell[1]} pixels"),
         ("colours", f"COLORTERM={place.colorterm or 'unset'}: "
-                    + ("24-bit" if place.colorterm in ("truecolor", "24bit") else
+                    + ("24-bit" if colour_system() == "truecolor" else
                        "256 (start with --colors truecolor if the terminal has 24-bit)")),
         ("graphics", f"{choice.graphics}: {choice.reason}"),
     ]

@@ -37,6 +37,16 @@ def test_a_256_colour_terminal_gets_palette_codes_only(config_path):
     assert 233 in backgrounds and 16 not in backgrounds
 
 
+def test_a_terminal_named_plain_xterm_gets_256_colours_not_16(config_path):
+    # TERM=xterm, Debian's xterm's own, which Rich reads as 16 colours.
+    codes = _colour_codes(_first_picture(config_path, TERM="xterm", COLORTERM=""))
+    assert any("48;5;" in code for code in codes)
+    sixteen = [code for code in codes
+               if re.search(r"(^|;)(3[0-7]|4[0-7]|9[0-7]|10[0-7])(;|$)", code)
+               and not re.search(r"[34]8;[25];", code)]
+    assert not sixteen, sixteen[:5]
+
+
 def test_a_truecolor_terminal_gets_the_picture_in_rgb(config_path):
     codes = _colour_codes(_first_picture(config_path, "--colors", "truecolor"))
     assert any(re.search(r"(^|;)38;2;\d+;\d+;\d+;48;2;", code) for code in codes)

@@ -6,7 +6,7 @@ import pytest
 from textual.geometry import Size
 
 from biceps.tui import detect
-from biceps.tui.detect import Answers, Place, choose, hint, parse, report
+from biceps.tui.detect import Answers, Place, choose, colour_system, hint, parse, report
 from biceps.tui.halfblocks import HalfBlocks
 from biceps.tui.pixels import ItermImages, KittyGraphics, KittyPlaceholders, Sixel, encoder_for
 
@@ -97,6 +97,9 @@ def test_a_protocol_asked_by_name_is_used_outside_a_multiplexer():
     (Answers(window=(900, 720), size=(100, 40, 0, 0)), (9, 18)),
     (Answers(size=(100, 40, 700, 600)), (7, 15)),  # the kernel's (xterm keeps it)
     (Answers(size=(100, 40, 0, 0)), (10, 20)),
+    # A pseudo-terminal nobody sized (script into a pipe) says 0 by 0 cells.
+    (Answers(window=(900, 720), size=(0, 0, 0, 0)), (10, 20)),
+    (Answers(size=(0, 0, 700, 600)), (10, 20)),
 ])
 def test_the_cell_size_from_the_best_source_there_is(answers, cell):
     assert choose("sixel", answers, Place()).cell == cell
@@ -142,3 +145,15 @@ def test_tmux_is_found_by_its_variable_and_asked_about_itself(monkeypatch):
         "tmux", "xterm-kitty", "tmux-256color", "", "", True)
     assert Place.here({"STY": "1.pts-0.host"}).multiplexer == "screen"
     assert Place.here({"TERM_PROGRAM": "WezTerm"}).terminal_program == "WezTerm"
+
+
+@pytest.mark.parametrize("asked, environ, system", [
+    ("auto", {"TERM": "xterm"}, "256"),  # Rich reads 16 colours; the muscle would be a stick
+    ("auto", {"TERM": "xterm", "COLORTERM": "truecolor"}, "truecolor"),
+    ("auto", {"TERM": "xterm-256color"}, "256"),
+    ("auto", {"TERM": "xterm", "TEXTUAL_COLOR_SYSTEM": "truecolor"}, "truecolor"),
+    ("auto", {}, "256"),
+    ("256", {"COLORTERM": "truecolor"}, "256"),  # the command line wins
+])
+def test_the_colours_are_the_terminals_but_never_fewer_than_256(asked, environ, system):
+    assert colour_system(asked, environ) == system
