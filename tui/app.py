@@ -626,11 +626,19 @@ def run_app(config: Config, colors: str = "auto", fps: float | None = None,
 
     Returns the exit status: 0, or 1 if the app ended on an error, after offering to save
     the model it had (:func:`rescued`)."""
-    colors = detect.colour_system(colors)
-    os.environ["TEXTUAL_COLOR_SYSTEM"] = colors
-    # Textual reads the variable once, when it is first imported, which has happened by
-    # now; its console takes the colour system from this constant.
-    textual.constants.COLOR_SYSTEM = colors
+    previous = textual.constants.COLOR_SYSTEM
+    # Textual's apps take their colours from this constant as they are made (it read
+    # TEXTUAL_COLOR_SYSTEM once, on import). Put back after, for a caller that goes on
+    # (a test process) and should keep its own.
+    textual.constants.COLOR_SYSTEM = detect.colour_system(colors)
+    try:
+        return _run(config, fps, compile_aside, graphics, pixel_scale)
+    finally:
+        textual.constants.COLOR_SYSTEM = previous
+
+
+def _run(config: Config, fps: float | None, compile_aside: bool, graphics: str | None,
+         pixel_scale: float) -> int:
     # Asked before Textual takes the terminal (its input thread would take the answers); not
     # at all when the command line says half-blocks, so nothing is written but the app.
     asked = graphics or config.render.graphics
