@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from biceps.engine import raster
+from biceps.engine.raster.bands import Bands
 from biceps.engine.transforms import Camera, Light, normal_matrix
 
 RASTERIZERS = {
@@ -25,12 +26,20 @@ class Renderer:
 
     Not thread-safe: use one renderer per thread. The kernels release the GIL, so a worker
     thread can render while another runs the UI.
+
+    threads: how many threads draw each frame, in bands (``engine/raster/bands.py``; by
+    default ``BICEPS_THREADS`` or every core); the picture is the same on any number.
     """
 
-    def __init__(self):
+    def __init__(self, threads: int | None = None):
         self._frame: tuple | None = None  # (height, width, ssaa)
-        self._planes = np.empty((11, 3))  # the rasterizers' scratch: depth, 1 / w, 9 attributes
+        self._bands = Bands(threads)
         self._vertex_count = -1
+
+    @property
+    def threads(self) -> int:
+        """How many threads draw each frame."""
+        return self._bands.threads
 
     def render(self, vertices, normals, triangles, albedo, model_matrix, camera: Camera,
                light: Light, width: int, height: int, shading: str = "gouraud", ssaa: int = 1,
@@ -74,15 +83,12 @@ class Renderer:
         if shading == "overdraw":
             background = (0, 0, 0)  # the picture counts from zero
         red, green, blue = (min(max(int(c), 0), 255) for c in background)
-        clear(self._colour, self._depth, (red, green, blue))
-        self._rasterize(rasterize, triangles, attributes, lighting)
+        meshes = [(triangles, self._screen_xy, self._screen_z, self._screen_q, self._outcodes,
+                   attributes)]
         if np.bitwise_or.reduce(self._outcodes) & raster.CLIP_MASK:
-            self._draw_clipped(rasterize, triangles, attributes, lighting, full_w, full_h)
-
-        if ssaa > 1:
-            self._downsample()
-            return _read_only(self._output)
-        return _read_only(self._colour)
+            meshes.append(self._clipped(triangles, attributes, full_w, full_h))
+        self._draw(rasterize, meshes, lighting, (red, green, blue))
+        return _read_only(self._output if ssaa > 1 else self._colour)
 
     def prepare(self, shading: str = "gouraud", ssaa: int = 1, *, vertex_stage: bool = True,
                 rasterizer: bool = True) -> None:
@@ -102,10 +108,9 @@ class Renderer:
             self._vertex_attributes(shading, Light())
         if rasterizer:
             no_triangles = _read_only(np.zeros((0, 3), np.int32))
-            self._rasterize(rasterize, no_triangles, self._attributes(shading),
-                            _lighting(Light(), Camera()))
-            if ssaa > 1:
-                self._downsample()
+            self._draw(rasterize, [(no_triangles, self._screen_xy, self._screen_z,
+                                    self._screen_q, self._outcodes, self._attributes(shading))],
+                       _lighting(Light(), Camera()), (0, 0, 0))
 
     def _transform(self, vertices, normals, albedo, model, view_projection, width, height):
         """The vertex stage: world positions and normals, clip space, screen positions."""
@@ -134,22 +139,34 @@ class Renderer:
         buffers = {"gouraud": self._colours, "phong": self._phong_attributes}
         return buffers.get(shading, self._no_attributes)
 
-    def _rasterize(self, rasterize, triangles, attributes, lighting) -> None:
-        """Draw ``triangles`` of the projected vertices into the frame buffers."""
-        rasterize(triangles, self._screen_xy, self._screen_z, self._screen_q, self._outcodes,
-                  attributes, lighting, self._colour.reshape(-1), self._depth.reshape(-1),
-                  self._depth.shape[1], self._spans, self._planes)
-
-    def _downsample(self) -> None:
-        """Average the supersampled frame into the output buffer."""
+    def _draw(self, rasterize, meshes, lighting, background) -> None:
+        """Clear the frame, draw ``meshes`` into it (each a tuple of triangles, screen_xy,
+        screen_z, screen_q, outcodes, attributes), in order, and average it down if it is
+        supersampled: band by band, a thread each (``engine/raster/bands.py``)."""
+        full_h, full_w = self._depth.shape
         _, width, ssaa = self._frame
-        raster.downsample(self._colour.reshape(-1), ssaa, self._output.reshape(-1), width,
-                          self._columns)
+        culled = [self._bands.cull(mesh[0], mesh[1], mesh[4], full_w, full_h)
+                  for mesh in meshes]
+        pixels, depths = self._colour.reshape(-1), self._depth.reshape(-1)
 
-    def _draw_clipped(self, rasterize, triangles, attributes, lighting, width, height) -> None:
-        """Draw the triangles that cross a clipping plane: clip them into a small mesh in
-        screen space and rasterize that. Only frames with a vertex outside a clipping plane
-        (the camera close to or inside the model, or a huge scale) get here."""
+        def draw_band(start, end, scratch):
+            spans, planes, hits, shaded, columns = scratch
+            clear(self._colour[start:end], self._depth[start:end], background)
+            for (triangles, xy, z, q, _, attributes), (visible, chunks) in zip(meshes, culled):
+                rasterize(triangles, visible, chunks, xy, z, q, attributes, lighting, pixels,
+                          depths, full_w, start, end, spans, planes, hits, shaded)
+            if ssaa > 1:
+                raster.downsample(self._colour[start:end].reshape(-1), ssaa,
+                                  self._output[start // ssaa:end // ssaa].reshape(-1), width,
+                                  columns)
+
+        self._bands.draw(draw_band)
+
+    def _clipped(self, triangles, attributes, width, height) -> tuple:
+        """The triangles that cross a clipping plane, clipped into a small mesh in screen
+        space: (triangles, screen_xy, screen_z, screen_q, outcodes, attributes). Only frames
+        with a vertex outside a clipping plane (the camera close to or inside the model, or
+        a huge scale) need it."""
         outside = (self._outcodes & raster.CLIP_MASK) != 0
         crossing = np.count_nonzero(outside[triangles].any(axis=1))
         room = max(crossing, 1) * raster.MAX_POLYGON
@@ -162,9 +179,8 @@ class Renderer:
                               self._screen_q, self._outcodes, attributes, width, height, out_xy,
                               out_z, out_q, out_attributes, out_triangles, counts)
         inside = np.zeros(room, np.uint8)  # every outcode 0: the clipper did its work
-        rasterize(_read_only(out_triangles[:counts[1]]), out_xy, out_z, out_q, inside,
-                  out_attributes, lighting, self._colour.reshape(-1), self._depth.reshape(-1),
-                  width, self._spans, self._planes)
+        return (_read_only(out_triangles[:counts[1]]), out_xy, out_z, out_q, inside,
+                out_attributes)
 
     def _reserve_frame(self, height: int, width: int, ssaa: int) -> None:
         """(Re)allocate the frame buffers when the size or the supersampling changes."""
@@ -173,8 +189,7 @@ class Renderer:
         self._colour = np.empty((height * ssaa, width * ssaa, 3), np.uint8)
         self._depth = np.empty((height * ssaa, width * ssaa), np.float32)
         self._output = np.empty((height, width, 3), np.uint8) if ssaa > 1 else None
-        self._columns = np.empty(3 * width * ssaa, np.int32)  # downsample's scratch
-        self._spans = np.empty((2, height * ssaa), np.int64)  # the rasterizers' scratch
+        self._bands.reserve(height, width, ssaa)
         self._frame = (height, width, ssaa)
 
     def _reserve_vertices(self, count: int) -> None:

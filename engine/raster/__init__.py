@@ -8,13 +8,15 @@ buffers and return nothing. ``engine/render.py`` calls them once each per frame:
    fixed point.
 3. ``vertex.light_vertices`` (Gouraud) or ``vertex.phong_vertices`` (Phong): the per-vertex
    attributes the rasterizer interpolates.
-4. ``draw.rasterize_gouraud``, ``rasterize_phong`` or ``rasterize_overdraw``, into buffers
-   cleared beforehand (``engine.render.clear``): per triangle, reject, cull, cover
-   (``coverage``), shade (``shading``).
-5. Only when some vertex is outside a clipping plane: ``clipping.clip_triangles`` cuts the
-   triangles that cross one into a small mesh already in screen space, drawn by the same
-   kernel.
-6. ``resample.downsample``: average supersampled pixels.
+4. Only when some vertex is outside a clipping plane: ``clipping.clip_triangles`` cuts the
+   triangles that cross one into a small mesh already in screen space, drawn after the
+   others by the same kernels.
+5. ``cull.cull_triangles``: the triangles that may cover a pixel (inside the clipping
+   planes, front-facing, on the screen), a share of the triangles per thread.
+6. Band by band, a thread each (``bands``): clear the band's rows
+   (``engine.render.clear``), then ``draw.rasterize_gouraud``, ``rasterize_phong`` or
+   ``rasterize_overdraw`` on them: per triangle, cover (``coverage``) and shade
+   (``shading``); then ``resample.downsample`` averages supersampled pixels.
 
 Spaces are those of ``engine/transforms.py``: OpenGL clip space, then screen space with
 ``x`` right and ``y`` down in pixels, pixel ``(x, y)`` centred at ``(x + 0.5, y + 0.5)``,
@@ -39,7 +41,8 @@ compiled again.
 
 from biceps.engine.raster.clipping import (BOTTOM, CLIP_MASK, FAR, INVALID, LEFT, MAX_POLYGON,
                                            NEAR, RIGHT, TOP, clip_triangles)
-from biceps.engine.raster.coverage import triangle_spans
+from biceps.engine.raster.coverage import band_spans, triangle_spans
+from biceps.engine.raster.cull import cull_triangles
 from biceps.engine.raster.draw import rasterize_gouraud, rasterize_overdraw, rasterize_phong
 from biceps.engine.raster.resample import downsample
 from biceps.engine.raster.shading import Lighting, highlight_threshold
@@ -48,7 +51,8 @@ from biceps.engine.raster.vertex import (light_vertices, phong_vertices, project
 
 __all__ = [
     "BOTTOM", "CLIP_MASK", "FAR", "INVALID", "LEFT", "MAX_POLYGON", "NEAR", "RIGHT", "TOP",
-    "Lighting", "clip_triangles", "downsample", "highlight_threshold", "light_vertices",
-    "phong_vertices", "project_vertices", "rasterize_gouraud", "rasterize_overdraw",
-    "rasterize_phong", "transform_vertices", "triangle_spans",
+    "Lighting", "band_spans", "clip_triangles", "cull_triangles", "downsample",
+    "highlight_threshold", "light_vertices", "phong_vertices", "project_vertices",
+    "rasterize_gouraud", "rasterize_overdraw", "rasterize_phong", "transform_vertices",
+    "triangle_spans",
 ]

@@ -106,7 +106,17 @@ def triangle_spans(x0, y0, x1, y1, x2, y2, width, height, span_lo, span_hi):
     Returns (first, end): the rows ``first <= y < end`` that may hold covered pixels
     (``first >= end`` if none), clipped to the screen.
     """
-    first, last, left, right = _pixel_box(x0, y0, x1, y1, x2, y2, width, height)
+    return band_spans(x0, y0, x1, y1, x2, y2, width, 0, height, span_lo, span_hi)
+
+
+@inline
+def band_spans(x0, y0, x1, y1, x2, y2, width, band_start, band_end, span_lo, span_hi):
+    """`triangle_spans` within the rows ``band_start <= y < band_end`` of the screen: the
+    same spans on those rows, whichever band they are asked for in, as each edge walker
+    starts on the band's first row with an exact division (so bands drawn apart make the
+    picture drawn whole, pixel for pixel)."""
+    first, last, left, right = _pixel_box(x0, y0, x1, y1, x2, y2, width, band_end)
+    first = first if first > band_start else band_start
     if first > last or left > right:
         return first, first
     a0, d0, q0, r0, dq0, dr0 = _edge_walker(x0, y0, x1, y1, first)

@@ -27,10 +27,9 @@ import math
 import numpy as np
 
 from biceps.engine.jit import helper, inline, ngjit
-from biceps.engine.raster.clipping import FAR
-from biceps.engine.raster.coverage import ONE, may_cover, triangle_spans
-from biceps.engine.raster.shading import (count_overdraw, shade_gouraud, shade_gouraud_on_screen,
-                                          shade_phong)
+from biceps.engine.raster.coverage import HALF, ONE, SUBPIXEL_BITS, band_spans
+from biceps.engine.raster.shading import (count_overdraw, light_phong,
+                                          shade_gouraud, shade_gouraud_on_screen, shade_phong)
 
 AFFINE_BELOW = 0.25
 """Gouraud's colour levels below which a triangle's drift in perspective goes unseen: it is
@@ -71,21 +70,21 @@ def _drift(q0, q1, q2, attributes, i0, i1, i2):
 
 
 @inline
-def _draw_triangle(shade, shade_on_screen, perspective, i0, i1, i2, screen_xy, screen_z,
-                   screen_q, attributes, lighting, pixels, depths, width, height, span_lo,
-                   span_hi, planes):
-    """Cover and shade the triangle of vertices i0, i1, i2 with the span shader ``shade``
-    in ``perspective``, or else with ``shade_on_screen`` (the two may be the same).
+def _cover(i0, i1, i2, perspective, screen_xy, screen_z, screen_q, attributes, width,
+           band_start, band_end, span_lo, span_hi, planes):
+    """The spans of the triangle of vertices i0, i1, i2 on the rows ``band_start <= y <
+    band_end``, and its planes: returns (first, end), the rows that may hold pixels.
 
     screen_xy: (2, n) int64, screen_z: (n,) float64, screen_q: (n,) float64 (1 / w),
     attributes: (a, n) float64. span_lo, span_hi: (height,) int64 and planes:
-    (>= 2 + a, 3) float64: scratch, written with the planes of the depth, of q = 1 / w and of
-    each attribute times q (q taken as 1 on the screen).
+    (>= 2 + a, 3) float64: scratch, written with the spans and with the planes of the
+    depth, of q = 1 / w and of each attribute times q (q taken as 1 unless ``perspective``).
     """
     x0, y0 = screen_xy[0, i0], screen_xy[1, i0]
     x1, y1 = screen_xy[0, i1], screen_xy[1, i1]
     x2, y2 = screen_xy[0, i2], screen_xy[1, i2]
-    first, end = triangle_spans(x0, y0, x1, y1, x2, y2, width, height, span_lo, span_hi)
+    first, end = band_spans(x0, y0, x1, y1, x2, y2, width, band_start, band_end, span_lo,
+                            span_hi)
     # Plane equations in pixels, through the snapped positions the coverage used.
     e1x, e1y = (x1 - x0) / ONE, (y1 - y0) / ONE
     e2x, e2y = (x2 - x0) / ONE, (y2 - y0) / ONE
@@ -98,92 +97,156 @@ def _draw_triangle(shade, shade_on_screen, perspective, i0, i1, i2, screen_xy, s
     for k in range(attributes.shape[0]):
         _set_plane(planes, 2 + k, fx, fy, e1x, e1y, e2x, e2y, inv_det, attributes[k, i0] * q0,
                    attributes[k, i1] * q1, attributes[k, i2] * q2)
+    return first, end
+
+
+@inline
+def _draw_triangle(shade, shade_on_screen, perspective, i0, i1, i2, screen_xy, screen_z,
+                   screen_q, attributes, lighting, pixels, depths, width, band_start, band_end,
+                   span_lo, span_hi, planes, hits, shaded):
+    """Cover (`_cover`) and shade the triangle's rows in the band with the span shader
+    ``shade`` in ``perspective``, or else with ``shade_on_screen`` (the two may be the
+    same); hits, shaded: their scratch, unused by these."""
+    first, end = _cover(i0, i1, i2, perspective, screen_xy, screen_z, screen_q, attributes,
+                        width, band_start, band_end, span_lo, span_hi, planes)
     if perspective:
         for y in range(first, end):
             lo, hi = span_lo[y], span_hi[y]
             if lo < hi:
                 shade(pixels, depths, np.uint64(y * width + lo), np.uint64(y * width + hi),
-                      lo + 0.5, y + 0.5, planes, lighting)
+                      lo + 0.5, y + 0.5, planes, lighting, hits, shaded, 0)
     else:
         for y in range(first, end):
             lo, hi = span_lo[y], span_hi[y]
             if lo < hi:
                 shade_on_screen(pixels, depths, np.uint64(y * width + lo),
-                                np.uint64(y * width + hi), lo + 0.5, y + 0.5, planes, lighting)
-
-
-@helper
-def _visible(triangles, t, screen_xy, outcodes, width, height):
-    """Whether triangle t may cover a pixel: inside every clipping plane but the far one
-    (a triangle crossing one is left for `clip_triangles`), front-facing, on the screen.
-    A helper, for LLVM to inline: inlined by numba (``@inline``) it made Phong's kernel half
-    as slow again on small pictures, 2.0 to 2.9 ms for 100k triangles at 200x120."""
-    i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
-    c0, c1, c2 = outcodes[i0], outcodes[i1], outcodes[i2]
-    if c0 & c1 & c2 or (c0 | c1 | c2) & ~FAR:
-        return False
-    return may_cover(screen_xy[0, i0], screen_xy[1, i0], screen_xy[0, i1], screen_xy[1, i1],
-                     screen_xy[0, i2], screen_xy[1, i2], width, height)
+                                np.uint64(y * width + hi), lo + 0.5, y + 0.5, planes, lighting,
+                                hits, shaded, 0)
 
 
 @inline
-def _rasterize(shade, triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
-               pixels, depths, width, spans, planes):
-    """The triangle loop of the rasterize kernels, for the span shader ``shade``, in
-    perspective."""
+def _draw_triangle_lit(shade, light, i0, i1, i2, screen_xy, screen_z, screen_q, attributes,
+                       lighting, pixels, depths, width, band_start, band_end, span_lo, span_hi,
+                       planes, hits, shaded):
+    """`_draw_triangle` in perspective for a span shader that lists the pixels it passes
+    in hits and shaded, and ``light``, which lights them all at once (Phong's, see
+    ``engine/raster/shading.py``): when the list could overflow, and at the end. Apart from
+    `_draw_triangle`, as the calls of even a ``light`` that does nothing made Gouraud's
+    loop half as slow again."""
+    first, end = _cover(i0, i1, i2, True, screen_xy, screen_z, screen_q, attributes, width,
+                        band_start, band_end, span_lo, span_hi, planes)
+    # Where ``light`` steps from: the centre of the pixel nearest the first vertex on the
+    # screen, the same in every band (so the picture is too) and never far from a pixel.
+    x = screen_xy[0, i0] >> SUBPIXEL_BITS
+    y = screen_xy[1, i0] >> SUBPIXEL_BITS
     height = depths.shape[0] // width
+    x = x if x > 0 else 0
+    y = y if y > 0 else 0
+    origin_x = (x if x < width else width - 1) + 0.5
+    origin_y = (y if y < height else height - 1) + 0.5
+    count = 0
+    for y in range(first, end):
+        lo, hi = span_lo[y], span_hi[y]
+        if lo < hi:
+            if count + (hi - lo) > hits.shape[0]:
+                light(pixels, count, origin_x, origin_y, planes, lighting, hits, shaded)
+                count = 0
+            count = shade(pixels, depths, np.uint64(y * width + lo), np.uint64(y * width + hi),
+                          lo + 0.5, y + 0.5, planes, lighting, hits, shaded, count)
+    light(pixels, count, origin_x, origin_y, planes, lighting, hits, shaded)
+
+
+@helper
+def _in_band(screen_xy, i0, i1, i2, band_start, band_end):
+    """Whether the triangle's bounding box holds a pixel centre on the rows
+    ``band_start <= y < band_end`` (as `coverage._pixel_range` counts them)."""
+    a, b, c = screen_xy[1, i0], screen_xy[1, i1], screen_xy[1, i2]
+    low = a if a < b else b
+    low = low if low < c else c
+    high = a if a > b else b
+    high = high if high > c else c
+    return -((HALF - low) >> SUBPIXEL_BITS) < band_end and (high - HALF) >> SUBPIXEL_BITS \
+        >= band_start
+
+
+@inline
+def _rasterize(shade, light, triangles, visible, chunks, screen_xy, screen_z, screen_q,
+               attributes, lighting, pixels, depths, width, band_start, band_end, spans, planes,
+               hits, shaded):
+    """The triangle loop of the rasterize kernels, for the span shader ``shade`` in
+    perspective, and ``light`` if it is not None (see `_draw_triangle_lit`)."""
     span_lo, span_hi = spans[0], spans[1]  # once: each view made in the loop costs a refcount
-    for t in range(triangles.shape[0]):
-        if _visible(triangles, t, screen_xy, outcodes, width, height):
-            _draw_triangle(shade, shade, True, triangles[t, 0], triangles[t, 1],
-                           triangles[t, 2], screen_xy, screen_z, screen_q, attributes, lighting,
-                           pixels, depths, width, height, span_lo, span_hi, planes)
+    for chunk in range(chunks.shape[0]):
+        start = chunks[chunk, 0]
+        for v in range(start, start + chunks[chunk, 1]):
+            t = visible[v]
+            i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
+            if not _in_band(screen_xy, i0, i1, i2, band_start, band_end):
+                continue
+            if light is None:
+                _draw_triangle(shade, shade, True, i0, i1, i2, screen_xy, screen_z, screen_q,
+                               attributes, lighting, pixels, depths, width, band_start,
+                               band_end, span_lo, span_hi, planes, hits, shaded)
+            else:
+                _draw_triangle_lit(shade, light, i0, i1, i2, screen_xy, screen_z, screen_q,
+                                   attributes, lighting, pixels, depths, width, band_start,
+                                   band_end, span_lo, span_hi, planes, hits, shaded)
 
 
 @ngjit
-def rasterize_gouraud(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
-                      pixels, depths, width, spans, planes):
-    """Draw every front-facing triangle inside the clipping planes, nearest wins, with
-    Gouraud shading.
+def rasterize_gouraud(triangles, visible, chunks, screen_xy, screen_z, screen_q, attributes,
+                      lighting, pixels, depths, width, band_start, band_end, spans, planes, hits,
+                      shaded):
+    """Draw the listed triangles on the rows ``band_start <= y < band_end``, nearest wins,
+    with Gouraud shading.
 
-    triangles: (m, 3) int32, counter-clockwise seen from the front.
-    screen_xy: (2, n) int64, screen_z: (n,) float64, screen_q: (n,) float64, outcodes: (n,)
-    uint8, from `project_vertices` (or `clip_triangles`). attributes: (a, n) float64, from
+    triangles: (m, 3) int32, counter-clockwise seen from the front. visible: (m,) int32 and
+    chunks: (k, 2) int64 from `cull.cull_triangles`: the triangles to draw, in order.
+    screen_xy: (2, n) int64, screen_z: (n,) float64, screen_q: (n,) float64 from
+    `project_vertices` (or `clip_triangles`). attributes: (a, n) float64, from
     `light_vertices` (Gouraud, a = 3) or `phong_vertices` (Phong, a = 9); any for overdraw.
     lighting: `Lighting` (used by Phong).
     pixels: (3 h w,) uint8 and depths: (h w,) float32, the frame buffers flattened,
-    cleared to the background and depth 0; width: w. spans: (2, h) int64 and planes:
-    (11, 3) float64 (at least 2 + a rows): scratch, passed in so that the kernel allocates
-    nothing (numba's ``np.empty`` is a sizeable compile of its own on a cold start).
+    cleared to the background and depth 0; width: w. Scratch, passed in so that the kernel
+    allocates nothing (numba's ``np.empty`` is a sizeable compile of its own on a cold
+    start), one set per band drawn at once: spans: (2, h) int64, planes: (11, 3) float64
+    (at least 2 + a rows), hits: (c,) int64 and shaded: (6, c) float32, c >= w.
 
-    Triangles with a vertex outside a clipping plane other than the far one are left for
-    `clip_triangles`. A triangle shallow enough is shaded on the screen, with no division
-    (see the module's docstring).
+    Only the rows of the band are written, so bands drawn at once by several threads never
+    share a pixel; each pixel sees the same triangles in the same order whatever the bands,
+    so the picture is the same. A triangle shallow enough is shaded on the screen, with no
+    division (see the module's docstring).
     """
-    height = depths.shape[0] // width
     span_lo, span_hi = spans[0], spans[1]
-    for t in range(triangles.shape[0]):
-        if not _visible(triangles, t, screen_xy, outcodes, width, height):
-            continue
-        i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
-        deep = _drift(screen_q[i0], screen_q[i1], screen_q[i2], attributes, i0, i1, i2) \
-            >= AFFINE_BELOW
-        _draw_triangle(shade_gouraud, shade_gouraud_on_screen, deep, i0, i1, i2, screen_xy,
-                       screen_z, screen_q, attributes, lighting, pixels, depths, width, height,
-                       span_lo, span_hi, planes)
+    for chunk in range(chunks.shape[0]):
+        start = chunks[chunk, 0]
+        for v in range(start, start + chunks[chunk, 1]):
+            t = visible[v]
+            i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
+            if not _in_band(screen_xy, i0, i1, i2, band_start, band_end):
+                continue
+            deep = _drift(screen_q[i0], screen_q[i1], screen_q[i2], attributes, i0, i1, i2) \
+                >= AFFINE_BELOW
+            _draw_triangle(shade_gouraud, shade_gouraud_on_screen, deep, i0, i1, i2, screen_xy,
+                           screen_z, screen_q, attributes, lighting, pixels, depths, width,
+                           band_start, band_end, span_lo, span_hi, planes, hits, shaded)
 
 
 @ngjit
-def rasterize_phong(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
-                    pixels, depths, width, spans, planes):
+def rasterize_phong(triangles, visible, chunks, screen_xy, screen_z, screen_q, attributes,
+                    lighting, pixels, depths, width, band_start, band_end, spans, planes, hits,
+                    shaded):
     """`rasterize_gouraud` with Phong shading, every triangle in perspective."""
-    _rasterize(shade_phong, triangles, screen_xy, screen_z, screen_q, outcodes, attributes,
-               lighting, pixels, depths, width, spans, planes)
+    _rasterize(shade_phong, light_phong, triangles, visible, chunks, screen_xy, screen_z,
+               screen_q, attributes, lighting, pixels, depths, width, band_start, band_end,
+               spans, planes, hits, shaded)
 
 
 @ngjit
-def rasterize_overdraw(triangles, screen_xy, screen_z, screen_q, outcodes, attributes, lighting,
-                       pixels, depths, width, spans, planes):
+def rasterize_overdraw(triangles, visible, chunks, screen_xy, screen_z, screen_q, attributes,
+                       lighting, pixels, depths, width, band_start, band_end, spans, planes,
+                       hits, shaded):
     """`rasterize_gouraud` counting the triangles that cover each pixel (`count_overdraw`)."""
-    _rasterize(count_overdraw, triangles, screen_xy, screen_z, screen_q, outcodes, attributes,
-               lighting, pixels, depths, width, spans, planes)
+    _rasterize(count_overdraw, None, triangles, visible, chunks, screen_xy, screen_z,
+               screen_q, attributes, lighting, pixels, depths, width, band_start, band_end,
+               spans, planes, hits, shaded)

@@ -75,20 +75,12 @@ def _byte(value):
     return np.uint8(_channel(value + 0.5))
 
 
-@helper
-def _normalised(x, y, z):
-    """(x, y, z) scaled to unit length (or left as is if zero)."""
-    length = math.sqrt(x * x + y * y + z * z)
-    if length > 0.0:
-        inv = 1.0 / length
-        return x * inv, y * inv, z * inv
-    return x, y, z
-
-
 @inline
-def shade_gouraud(pixels, depths, start, end, xc, yc, planes, lighting):
+def shade_gouraud(pixels, depths, start, end, xc, yc, planes, lighting, hits, shaded, count):
     """Gouraud: depth-test, then the colour interpolated from the vertices, in perspective.
-    planes: depth, q, and red, green, blue in [0, 255] times q. lighting: unused.
+    planes: depth, q, and red, green, blue in [0, 255] times q. lighting, hits, shaded:
+    unused; count returned as it is (every span shader takes and returns the same, see
+    `shade_phong`).
 
     Every plane steps along the span by forward differences in float64, exact enough over
     any span; the colour, a convex combination of the vertices', is within [0, 255] but for
@@ -114,10 +106,12 @@ def shade_gouraud(pixels, depths, start, end, xc, yc, planes, lighting):
         r += dr
         g += dg
         b += db
+    return count
 
 
 @inline
-def shade_gouraud_on_screen(pixels, depths, start, end, xc, yc, planes, lighting):
+def shade_gouraud_on_screen(pixels, depths, start, end, xc, yc, planes, lighting, hits,
+                            shaded, count):
     """`shade_gouraud` for a triangle shallow enough to interpolate on the screen (q is 1
     throughout, see ``engine/raster/draw.py``): no division.
 
@@ -143,63 +137,146 @@ def shade_gouraud_on_screen(pixels, depths, start, end, xc, yc, planes, lighting
         r += dr
         g += dg
         b += db
-
-
-@helper
-def _phong_attributes(planes, x, y):
-    """Phong's attributes at (x, y), in perspective: world position (3), world normal (3),
-    albedo (3)."""
-    w = 1.0 / (planes[1, 0] + planes[1, 1] * x + planes[1, 2] * y)
-    return ((planes[2, 0] + planes[2, 1] * x + planes[2, 2] * y) * w,
-            (planes[3, 0] + planes[3, 1] * x + planes[3, 2] * y) * w,
-            (planes[4, 0] + planes[4, 1] * x + planes[4, 2] * y) * w,
-            (planes[5, 0] + planes[5, 1] * x + planes[5, 2] * y) * w,
-            (planes[6, 0] + planes[6, 1] * x + planes[6, 2] * y) * w,
-            (planes[7, 0] + planes[7, 1] * x + planes[7, 2] * y) * w,
-            (planes[8, 0] + planes[8, 1] * x + planes[8, 2] * y) * w,
-            (planes[9, 0] + planes[9, 1] * x + planes[9, 2] * y) * w,
-            (planes[10, 0] + planes[10, 1] * x + planes[10, 2] * y) * w)
+    return count
 
 
 @inline
-def shade_phong(pixels, depths, start, end, xc, yc, planes, lighting):
-    """Phong: depth-test, then light each pixel with its interpolated normal: ambient plus
-    Lambert plus the Blinn-Phong highlight (Blinn, "Models of Light Reflection for Computer
-    Synthesized Pictures", 1977) of a white point light.
+def shade_phong(pixels, depths, start, end, xc, yc, planes, lighting, hits, shaded, count):
+    """Phong's span: depth-test, and list the pixels that pass for `light_phong`, which
+    lights them all at once, once per triangle (or when the list is full). Returns the
+    length of the list, ``count`` before.
 
-    planes: depth, q, and times q: world position (3), world normal (3), albedo (3) in
-    [0, 255]. lighting: `Lighting`.
+    hits: (c,) int64, the pixels' offsets; shaded: (6, c) float32, rows 0 and 1 their
+    centres' x and y. A triangle's pixels lit in one loop, rather than a span's, make that
+    loop long enough for LLVM's vector code to pay (a span of a small triangle is a few
+    pixels long, and its setup costs as much as the pixels); and a pixel is lit once per
+    triangle found nearest so far, never once per triangle covering it.
     """
     for i in range(start, end):
         x = xc + np.float64(i - start)
         depth = np.float32(planes[0, 0] + planes[0, 1] * x + planes[0, 2] * yc)
-        if not depth > depths[i]:
-            continue
-        depths[i] = depth
-        px, py, pz, nx, ny, nz, red, green, blue = _phong_attributes(planes, x, yc)
-        nx, ny, nz = _normalised(nx, ny, nz)
-        lx, ly, lz = _normalised(lighting.light_x - px, lighting.light_y - py,
-                                 lighting.light_z - pz)
-        vx, vy, vz = _normalised(lighting.eye_x - px, lighting.eye_y - py, lighting.eye_z - pz)
-        n_dot_l = nx * lx + ny * ly + nz * lz
-        intensity = lighting.ambient
-        highlight = 0.0
-        if n_dot_l > 0.0:
-            intensity += lighting.diffuse * n_dot_l
-            hx, hy, hz = _normalised(lx + vx, ly + vy, lz + vz)
-            n_dot_h = nx * hx + ny * hy + nz * hz
-            if n_dot_h > lighting.highlight_threshold:
-                highlight = (255.0 * lighting.specular
-                             * np.float32(n_dot_h) ** np.float32(lighting.shininess))
-        offset = np.uint64(3) * i
-        pixels[offset] = _byte(red * intensity + highlight)
-        pixels[offset + np.uint64(1)] = _byte(green * intensity + highlight)
-        pixels[offset + np.uint64(2)] = _byte(blue * intensity + highlight)
+        if depth > depths[i]:
+            depths[i] = depth
+            hits[count] = np.int64(i)
+            shaded[0, count] = np.float32(x)
+            shaded[1, count] = np.float32(yc)
+            count += 1
+    return count
 
 
 @inline
-def count_overdraw(pixels, depths, start, end, xc, yc, planes, lighting):
+def light_phong(pixels, count, origin_x, origin_y, planes, lighting, hits, shaded):
+    """Light the ``count`` pixels `shade_phong` listed: ambient plus Lambert plus the
+    Blinn-Phong highlight (Blinn, "Models of Light Reflection for Computer Synthesized
+    Pictures", 1977) of a white point light, with each pixel's interpolated normal.
+
+    planes: depth, q, and times q: world position (3), world normal (3), albedo (3) in
+    [0, 255]. lighting: `Lighting`. shaded rows 2 to 5: scratch. origin_x, origin_y: a
+    point near the triangle, the same for all its pixels (see below).
+
+    Two passes: the lighting, in float32 with no branch and no call, which LLVM vectorises;
+    then the writes, with the highlight's ``pow`` for the pixels near the highlight (where
+    Phong's cosine reaches `highlight_threshold`).
+
+    Only the albedo needs the attribute over q: the normal and the vectors to the light and
+    to the eye are each normalised, and scaling by q > 0 (1 / w, positive in front of the
+    eye) does not change a direction, so they are interpolated times q as they come, with
+    no division: ``light q - position q`` is linear on the screen as both terms are. Each
+    quantity is its value at the origin (float64, where the planes reach far from the
+    screen's corner) plus float32 steps from there: a pixel's colour depends on the pixel
+    and the triangle alone, not on which band or which list it was lit in.
+    """
+    if count == 0:
+        return
+    ox, oy = origin_x, origin_y
+    lx, ly, lz = lighting.light_x, lighting.light_y, lighting.light_z
+    ex, ey, ez = lighting.eye_x, lighting.eye_y, lighting.eye_z
+    q = _at(planes, 1, ox, oy)
+    px, py, pz = _at(planes, 2, ox, oy), _at(planes, 3, ox, oy), _at(planes, 4, ox, oy)
+    q0, qx, qy = np.float32(q), np.float32(planes[1, 1]), np.float32(planes[1, 2])
+    n0x, nxx, nxy = _start(planes, 5, ox, oy)
+    n0y, nyx, nyy = _start(planes, 6, ox, oy)
+    n0z, nzx, nzy = _start(planes, 7, ox, oy)
+    a0r, arx, ary = _start(planes, 8, ox, oy)
+    a0g, agx, agy = _start(planes, 9, ox, oy)
+    a0b, abx, aby = _start(planes, 10, ox, oy)
+    t0x, txx, txy = _towards(planes, 2, lx, q, px)
+    t0y, tyx, tyy = _towards(planes, 3, ly, q, py)
+    t0z, tzx, tzy = _towards(planes, 4, lz, q, pz)
+    v0x, vxx, vxy = _towards(planes, 2, ex, q, px)
+    v0y, vyx, vyy = _towards(planes, 3, ey, q, py)
+    v0z, vzx, vzy = _towards(planes, 4, ez, q, pz)
+    ambient, diffuse = np.float32(lighting.ambient), np.float32(lighting.diffuse)
+    fx, fy = np.float32(ox), np.float32(oy)
+    zero, one = np.float32(0.0), np.float32(1.0)
+    for j in range(count):
+        u, v = shaded[0, j] - fx, shaded[1, j] - fy
+        nx, ny, nz = n0x + u * nxx + v * nxy, n0y + u * nyx + v * nyy, n0z + u * nzx + v * nzy
+        tx, ty, tz = t0x + u * txx + v * txy, t0y + u * tyx + v * tyy, t0z + u * tzx + v * tzy
+        vx, vy, vz = v0x + u * vxx + v * vxy, v0y + u * vyx + v * vyy, v0z + u * vzx + v * vzy
+        n_scale = _inverse_length(nx, ny, nz)
+        t_scale = _inverse_length(tx, ty, tz)
+        v_scale = _inverse_length(vx, vy, vz)
+        tx, ty, tz = tx * t_scale, ty * t_scale, tz * t_scale
+        hx, hy, hz = tx + vx * v_scale, ty + vy * v_scale, tz + vz * v_scale
+        h_scale = _inverse_length(hx, hy, hz)
+        n_dot_l = (nx * tx + ny * ty + nz * tz) * n_scale
+        n_dot_h = (nx * hx + ny * hy + nz * hz) * n_scale * h_scale
+        lit = n_dot_l > zero
+        intensity = (ambient + diffuse * (n_dot_l if lit else zero)) / (q0 + u * qx + v * qy)
+        shaded[2, j] = (a0r + u * arx + v * ary) * intensity
+        shaded[3, j] = (a0g + u * agx + v * agy) * intensity
+        shaded[4, j] = (a0b + u * abx + v * aby) * intensity
+        shaded[5, j] = n_dot_h if lit else -one
+    threshold = lighting.highlight_threshold
+    specular = np.float32(255.0 * lighting.specular)
+    shininess = np.float32(lighting.shininess)
+    three = np.uint64(3)
+    for j in range(count):
+        n_dot_h = shaded[5, j]
+        highlight = specular * n_dot_h ** shininess if n_dot_h > threshold else zero
+        offset = three * np.uint64(hits[j])
+        pixels[offset] = _byte(shaded[2, j] + highlight)
+        pixels[offset + np.uint64(1)] = _byte(shaded[3, j] + highlight)
+        pixels[offset + np.uint64(2)] = _byte(shaded[4, j] + highlight)
+
+
+@helper
+def _start(planes, row, x, y):
+    """The plane ``planes[row]`` at (x, y) and its steps along x and y, float32."""
+    return (np.float32(_at(planes, row, x, y)), np.float32(planes[row, 1]),
+            np.float32(planes[row, 2]))
+
+
+@helper
+def _towards(planes, row, target, q, position):
+    """The plane of ``target q - position q`` (one coordinate of the vector from a pixel's
+    point to ``target``, times q) as `_start` gives it, from q and the position's plane
+    ``planes[row]`` at the first pixel."""
+    return (np.float32(target * q - position),
+            np.float32(target * planes[1, 1] - planes[row, 1]),
+            np.float32(target * planes[1, 2] - planes[row, 2]))
+
+
+@helper
+def _at(planes, row, x, y):
+    """The plane ``planes[row]`` at (x, y), float64."""
+    return planes[row, 0] + planes[row, 1] * x + planes[row, 2] * y
+
+
+@helper
+def _inverse_length(x, y, z):
+    """1 / |(x, y, z)| (float32), or 0 for the zero vector (a normal that cancels out, a
+    pixel on the light), which then lights nothing: a select, not a branch, so that the
+    loop calling it vectorises."""
+    square = x * x + y * y + z * z
+    return np.float32(1.0) / np.sqrt(square) if square > np.float32(0.0) else np.float32(0.0)
+
+
+@inline
+def count_overdraw(pixels, depths, start, end, xc, yc, planes, lighting, hits, shaded, count):
     """Add 1 to the red channel of every pixel, with no depth test: how many triangles
     cover each pixel. planes, lighting: unused."""
     for i in range(start, end):
         pixels[np.uint64(3) * i] += 1
+    return count

@@ -1,0 +1,117 @@
+"""Bands: a frame drawn on every core, as horizontal bands of rows, one thread each.
+
+The kernels release the GIL (``engine/jit.py``), so plain Python threads run them at once.
+Each band is cleared, rasterized and (when supersampled) averaged down by one thread, which
+alone writes its rows: no two threads ever touch one pixel. Every band draws the triangles
+in the same order and a span's pixels do not depend on where the band starts
+(`coverage.band_spans`), so the picture is the same, byte for byte, on any number of
+threads. The triangles are culled beforehand, a share of them per thread
+(``engine/raster/cull.py``), so that no band repeats the tests that throw most of them out.
+
+Threads rather than numba's ``parallel=True``: its default thread pool (workqueue) aborts
+the process when two threads start parallel kernels at once, which the app does (a frame
+rendering while a picture is exported or a video recorded), and parallel kernels take
+several times as long to compile, on the cold first run the app is to start within 3.5 s.
+
+How many threads: ``BICEPS_THREADS`` in the environment, or else every core this process
+may run on. A setting of the machine rather than of the model's file, which travels between
+machines; 1 keeps everything on the calling thread.
+"""
+
+from __future__ import annotations
+
+import os
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from biceps.engine.raster.cull import cull_triangles
+
+THREADS_VARIABLE = "BICEPS_THREADS"
+
+SMALL_WORK = 64 * 64 * 16
+"""Pixels times bands below which a frame is drawn on one thread, all the same: handing a
+band to another thread and waiting for it costs tens of microseconds, as much as drawing a
+small picture."""
+
+HITS = 4096
+"""The pixels Phong lists before it lights them (``engine/raster/shading.py``), at least:
+enough for most triangles' whole share of a band, few enough to stay in the L1 and L2
+caches."""
+
+_pool: ThreadPoolExecutor | None = None
+
+
+def default_threads() -> int:
+    """``BICEPS_THREADS`` if set to a positive whole number, else this process's cores."""
+    value = os.environ.get(THREADS_VARIABLE, "").strip()
+    if value.isdigit() and int(value) >= 1:
+        return int(value)
+    if hasattr(os, "sched_getaffinity"):
+        return max(len(os.sched_getaffinity(0)), 1)
+    return max(os.cpu_count() or 1, 1)
+
+
+def run_all(tasks) -> None:
+    """Run every callable of ``tasks``, the first on this thread and the rest on the pool's,
+    and return once all have, raising the first error any raised."""
+    global _pool
+    tasks = list(tasks)
+    if len(tasks) > 1 and _pool is None:
+        _pool = ThreadPoolExecutor(max_workers=max(default_threads(), len(tasks)) - 1,
+                                   thread_name_prefix="biceps-band")
+    futures = [_pool.submit(task) for task in tasks[1:]]
+    try:
+        tasks[0]()
+    finally:
+        for future in futures:
+            future.result()
+
+
+class Bands:
+    """The split of frames into bands, and each band's scratch buffers."""
+
+    def __init__(self, threads: int | None = None):
+        threads = default_threads() if threads is None else threads
+        if not (isinstance(threads, (int, np.integer)) and threads >= 1):
+            raise ValueError(f"threads must be a positive integer, got {threads!r}")
+        self.threads = int(threads)
+        self._shape: tuple | None = None
+
+    def reserve(self, height: int, width: int, ssaa: int) -> None:
+        """Split a frame of ``height`` x ``width`` pixels drawn ``ssaa`` times finer into
+        bands, each a whole number of output rows, and allocate their scratch."""
+        if self._shape == (height, width, ssaa):
+            return
+        count = self.threads if height * width * self.threads >= SMALL_WORK else 1
+        count = min(count, height)
+        edges = [round(height * k / count) for k in range(count + 1)]
+        self.rows = [(ssaa * low, ssaa * high) for low, high in zip(edges, edges[1:])]
+        fine_h, fine_w = height * ssaa, width * ssaa
+        hits = max(2 * fine_w, HITS)
+        self.scratch = [
+            (np.empty((2, fine_h), np.int64), np.empty((11, 3)), np.empty(hits, np.int64),
+             np.empty((6, hits), np.float32), np.empty(3 * fine_w, np.int32))
+            for _ in self.rows
+        ]
+        self._shape = (height, width, ssaa)
+
+    def cull(self, triangles, screen_xy, outcodes, width, height) -> tuple:
+        """The triangles that may cover a pixel, culled a share per thread: (visible,
+        chunks) for the rasterize kernels."""
+        m = len(triangles)
+        count = self.threads if m >= 4096 and len(self.rows) > 1 else 1
+        edges = [m * k // count for k in range(count + 1)]
+        chunks = np.array(list(zip(edges, edges[1:])), np.int64).reshape(-1, 2)
+        visible = np.empty(m, np.int32)
+        run_all(lambda chunk=chunk: cull_triangles(triangles, screen_xy, outcodes, width,
+                                                   height, chunks, chunk, visible)
+                for chunk in range(count))
+        return visible, chunks
+
+    def draw(self, draw_band) -> None:
+        """Call ``draw_band(start, end, scratch)`` for every band at once: its rows
+        ``start <= y < end`` of the fine frame, and its scratch (spans, planes, hits,
+        shaded, columns)."""
+        run_all(lambda rows=rows, scratch=scratch: draw_band(*rows, scratch)
+                for rows, scratch in zip(self.rows, self.scratch))

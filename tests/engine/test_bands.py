@@ -1,0 +1,90 @@
+"""Bands: a frame drawn by several threads is the frame drawn by one, byte for byte."""
+
+import numpy as np
+import pytest
+
+from biceps.engine import raster
+from biceps.engine.config import DEFAULT_CONFIG, load_config
+from biceps.engine.raster.bands import THREADS_VARIABLE, Bands, default_threads
+from biceps.engine.render import Renderer
+from biceps.engine.scene import (Scene, outline, scene_mesh, supersampling, view_camera,
+                                 zoomed_light)
+from biceps.engine.transforms import Camera, Light
+
+SCENES = {
+    "gouraud": {},
+    "phong": {"render": {"shading": "phong"}},
+    "overdraw": {"render": {"shading": "overdraw"}},
+    "supersampled phong": {"render": {"shading": "phong", "ssaa": 3}},
+    "close-up, clipped": {"view": {"scale": 9.0, "yaw": 40.0}},
+    "phong close-up, clipped": {"render": {"shading": "phong"},
+                                "view": {"scale": 9.0, "yaw": 40.0}},
+}
+
+
+def frame(scene: Scene, renderer: Renderer, width: int, height: int) -> np.ndarray:
+    """The scene as `SceneRenderer` draws it, by ``renderer``: a copy."""
+    mesh, albedo = scene_mesh(scene.arm, scene.render)
+    camera, model = view_camera(scene.view, outline(mesh.vertices), width / height)
+    light = zoomed_light(scene.light, scene.view.scale, camera)
+    return renderer.render(mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
+                           light, width, height, shading=scene.render.shading,
+                           ssaa=supersampling(scene.render, height)).copy()
+
+
+@pytest.mark.parametrize("threads", [2, 3, 7])
+@pytest.mark.parametrize("name", list(SCENES))
+def test_several_threads_draw_the_picture_one_thread_draws(name, threads):
+    changes = SCENES[name]
+    scene = Scene.of(load_config(DEFAULT_CONFIG))
+    scene = scene.with_render(**changes.get("render", {})).with_view(**changes.get("view", {}))
+    width, height = 301, 171  # odd, so that the bands are of different heights
+    alone, together = Renderer(threads=1), Renderer(threads=threads)
+    expected = frame(scene, alone, width, height)
+    drawn = frame(scene, together, width, height)
+    assert len(together._bands.rows) == threads  # it was drawn in bands
+    assert np.count_nonzero(expected) > 1000  # something drawn (on black)
+    np.testing.assert_array_equal(drawn, expected)
+
+
+def test_a_band_holds_exactly_the_spans_of_its_rows():
+    triangle = (5 * 256 + 17, 3 * 256 + 5, 2 * 256 + 99, 40 * 256 + 200, 37 * 256 + 3, 29 * 256)
+    whole_lo, whole_hi = np.zeros(48, np.int64), np.zeros(48, np.int64)
+    first, end = raster.triangle_spans(*triangle, 40, 48, whole_lo, whole_hi)
+    for start, stop in [(0, 10), (10, 11), (11, 30), (30, 48)]:
+        lo, hi = np.zeros(48, np.int64), np.zeros(48, np.int64)
+        band_first, band_end = raster.band_spans(*triangle, 40, start, stop, lo, hi)
+        assert (band_first, band_end) == (max(first, start), min(end, stop))
+        rows = slice(band_first, band_end)
+        np.testing.assert_array_equal(lo[rows], whole_lo[rows])
+        np.testing.assert_array_equal(hi[rows], whole_hi[rows])
+
+
+def test_phong_lights_a_triangle_larger_than_its_list_of_pixels():
+    # A square filling a 200x150 picture: 30,000 pixels against a list of 4,096, so the
+    # list is lit many times over within each triangle. Ambient light only: every pixel
+    # is its albedo, white.
+    square = np.array([(-2, -2, 0), (2, -2, 0), (2, 2, 0), (-2, 2, 0)], np.float64)
+    camera = Camera(eye=(0.0, 0.0, 1.0), target=(0.0, 0.0, 0.0), fov_y_deg=90.0, near=0.1,
+                    far=10.0)
+    light = Light(position=(0.0, 0.0, 10.0), ambient=1.0, diffuse=0.0, specular=0.0)
+    picture = Renderer(threads=1).render(
+        square, np.tile([0.0, 0.0, 1.0], (4, 1)), np.array([[0, 1, 2], [0, 2, 3]], np.int32),
+        np.ones((4, 3), np.float32), np.eye(4), camera, light, 200, 150, shading="phong")
+    assert np.all(picture == 255)
+
+
+@pytest.mark.parametrize(("value", "expected"), [("3", 3), (" 1 ", 1), ("0", None),
+                                                 ("-2", None), ("many", None), ("", None)])
+def test_the_thread_count_comes_from_the_environment_if_it_is_sensible(monkeypatch, value,
+                                                                        expected):
+    monkeypatch.setenv(THREADS_VARIABLE, value)
+    monkeypatch.setattr("os.sched_getaffinity", lambda _: {0, 1, 2, 3, 4}, raising=False)
+    monkeypatch.setattr("os.cpu_count", lambda: 5)
+    assert default_threads() == (5 if expected is None else expected)
+
+
+@pytest.mark.parametrize("threads", [0, -1, 1.5, "2"])
+def test_a_renderer_refuses_a_thread_count_that_is_not_a_positive_integer(threads):
+    with pytest.raises(ValueError, match="threads"):
+        Bands(threads)
