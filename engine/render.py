@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from biceps.engine import raster
-from biceps.engine.raster.bands import Bands
+from biceps.engine.raster.bands import Bands, run_all
 from biceps.engine.transforms import Camera, Light, normal_matrix
 
 RASTERIZERS = {
@@ -19,6 +19,10 @@ RASTERIZERS = {
 }
 """Shadings by name. "overdraw" is a debugging view: the red channel counts the triangles
 that cover each pixel (with no depth test)."""
+
+PARALLEL_VERTICES = 16384
+"""Vertices from which projecting them and working out their attributes, each about 3 ns a
+vertex, pay for a second thread (tens of microseconds to hand over)."""
 
 
 class Renderer:
@@ -35,6 +39,7 @@ class Renderer:
         self._frame: tuple | None = None  # (height, width, ssaa)
         self._bands = Bands(threads)
         self._vertex_count = -1
+        self._mesh: tuple | None = None  # (vertices, normals, triangles) last copied in
 
     @property
     def threads(self) -> int:
@@ -68,16 +73,30 @@ class Renderer:
             raise ValueError(f"ssaa must be a positive integer, got {ssaa!r}")
         if width < 1 or height < 1:
             raise ValueError(f"the picture must be at least 1x1 pixels, got {width}x{height}")
+        # A mesh's read-only arrays, passed again, are the mesh already checked and copied
+        # (held here, so that no other array can take their place in memory meanwhile).
+        mesh = (vertices, normals, triangles)
+        known = self._mesh is not None and all(
+            given is kept and not given.flags.writeable for given, kept in zip(mesh, self._mesh))
         triangles = _read_only(np.ascontiguousarray(triangles, dtype=np.int32))
         model = np.ascontiguousarray(model_matrix, dtype=np.float64)
-        _check_mesh(vertices, normals, triangles, albedo)
+        if not known:
+            self._mesh = None
+            _check_mesh(vertices, normals, triangles, albedo)
+        else:
+            _check_shape("albedo", albedo, len(vertices))
         self._reserve_frame(int(height), int(width), int(ssaa))
         self._reserve_vertices(len(vertices))
         full_h, full_w = self._depth.shape
 
         view_projection = camera.projection_matrix(width / height) @ camera.view_matrix()
-        self._transform(vertices, normals, albedo, model, view_projection, full_w, full_h)
-        attributes = self._vertex_attributes(shading, light)
+        if not known:
+            # The kernels take per-vertex arrays component-major (engine/raster/__init__.py).
+            np.copyto(self._vertices, np.asarray(vertices).T)
+            np.copyto(self._normals, np.asarray(normals).T)
+            self._mesh = mesh
+        attributes = self._transform(shading, light, albedo, model, view_projection, full_w,
+                                     full_h)
         lighting = _lighting(light, camera)
 
         if shading == "overdraw":
@@ -103,36 +122,46 @@ class Renderer:
         self._reserve_frame(1, 1, ssaa)
         self._reserve_vertices(1)
         if vertex_stage:
-            self._transform(np.zeros((1, 3)), np.zeros((1, 3)), np.zeros((1, 3), np.float32),
-                            np.eye(4), np.eye(4), 1, 1)
-            self._vertex_attributes(shading, Light())
+            self._mesh = None
+            self._vertices.fill(0.0)
+            self._normals.fill(0.0)
+            self._transform(shading, Light(), np.zeros((1, 3), np.float32), np.eye(4),
+                            np.eye(4), 1, 1)
         if rasterizer:
             no_triangles = _read_only(np.zeros((0, 3), np.int32))
             self._draw(rasterize, [(no_triangles, self._screen_xy, self._screen_z,
                                     self._screen_q, self._outcodes, self._attributes(shading))],
                        _lighting(Light(), Camera()), (0, 0, 0))
 
-    def _transform(self, vertices, normals, albedo, model, view_projection, width, height):
-        """The vertex stage: world positions and normals, clip space, screen positions."""
-        # The kernels take per-vertex arrays component-major (see engine/raster/__init__.py).
-        np.copyto(self._vertices, np.asarray(vertices).T)
-        np.copyto(self._normals, np.asarray(normals).T)
+    def _transform(self, shading, light, albedo, model, view_projection, width, height):
+        """The vertex stage, from the vertices and normals copied in: world positions and
+        normals, then at once (two threads for a large mesh) clip space and screen positions,
+        and what the rasterizer interpolates for ``shading`` (returned: (a, n) float64)."""
         np.copyto(self._albedo, np.asarray(albedo).T)
         raster.transform_vertices(self._vertices, self._normals, model, _normal_matrix(model),
                                   self._world, self._world_normals)
-        raster.project_vertices(self._world, view_projection, width, height, self._clip,
-                                self._screen_xy, self._screen_z, self._screen_q, self._outcodes)
-
-    def _vertex_attributes(self, shading: str, light: Light) -> np.ndarray:
-        """Work out what the rasterizer interpolates for ``shading``: (a, n) float64."""
         attributes = self._attributes(shading)
+        steps = [
+            lambda: raster.project_vertices(self._world, view_projection, width, height,
+                                            self._clip, self._screen_xy, self._screen_z,
+                                            self._screen_q, self._outcodes),
+            lambda: self._vertex_attributes(shading, light, attributes),
+        ]
+        if self.threads > 1 and self._vertex_count >= PARALLEL_VERTICES:
+            run_all(steps)
+        else:
+            for step in steps:
+                step()
+        return attributes
+
+    def _vertex_attributes(self, shading: str, light: Light, attributes: np.ndarray) -> None:
+        """Work out what the rasterizer interpolates for ``shading`` into ``attributes``."""
         if shading == "gouraud":
             raster.light_vertices(self._world, self._world_normals, self._albedo,
                                   np.asarray(light.position, dtype=np.float64),
                                   float(light.ambient), float(light.diffuse), attributes)
         elif shading == "phong":
             raster.phong_vertices(self._world, self._world_normals, self._albedo, attributes)
-        return attributes
 
     def _attributes(self, shading: str) -> np.ndarray:
         """The buffer of what the rasterizer interpolates for ``shading``."""
@@ -196,6 +225,7 @@ class Renderer:
         """(Re)allocate the per-vertex buffers when the vertex count changes."""
         if self._vertex_count == count:
             return
+        self._mesh = None
         self._vertices = np.empty((3, count))
         self._normals = np.empty((3, count))
         self._albedo = np.empty((3, count), np.float32)
@@ -247,12 +277,16 @@ def _check_mesh(vertices, normals, triangles, albedo) -> None:
     do not check bounds)."""
     count = len(vertices)
     for name, array in (("vertices", vertices), ("normals", normals), ("albedo", albedo)):
-        if np.shape(array) != (count, 3):
-            raise ValueError(f"{name} must have shape ({count}, 3), got {np.shape(array)}")
+        _check_shape(name, array, count)
     if triangles.ndim != 2 or triangles.shape[1] != 3:
         raise ValueError(f"triangles must have shape (m, 3), got {triangles.shape}")
     if triangles.size and (triangles.min() < 0 or triangles.max() >= count):
         raise ValueError(f"triangles index vertices outside 0..{count - 1}")
+
+
+def _check_shape(name: str, array, count: int) -> None:
+    if np.shape(array) != (count, 3):
+        raise ValueError(f"{name} must have shape ({count}, 3), got {np.shape(array)}")
 
 
 def clear(colour: np.ndarray, depth: np.ndarray, background: tuple[int, int, int]) -> None:

@@ -29,10 +29,13 @@ from biceps.engine.raster.cull import cull_triangles
 
 THREADS_VARIABLE = "BICEPS_THREADS"
 
-SMALL_WORK = 64 * 64 * 16
-"""Pixels times bands below which a frame is drawn on one thread, all the same: handing a
-band to another thread and waiting for it costs tens of microseconds, as much as drawing a
+SMALL_PICTURE = 32_000
+"""Pixels below which a frame is drawn in one band, on the calling thread: handing a band
+to another thread and waiting for it costs tens of microseconds, as much as drawing a
 small picture."""
+
+MANY_TRIANGLES = 16_384
+"""Triangles from which culling them pays for more threads than one."""
 
 HITS = 4096
 """The pixels Phong lists before it lights them (``engine/raster/shading.py``), at least:
@@ -83,7 +86,7 @@ class Bands:
         bands, each a whole number of output rows, and allocate their scratch."""
         if self._shape == (height, width, ssaa):
             return
-        count = self.threads if height * width * self.threads >= SMALL_WORK else 1
+        count = self.threads if height * width * ssaa * ssaa >= SMALL_PICTURE else 1
         count = min(count, height)
         edges = [round(height * k / count) for k in range(count + 1)]
         self.rows = [(ssaa * low, ssaa * high) for low, high in zip(edges, edges[1:])]
@@ -100,7 +103,7 @@ class Bands:
         """The triangles that may cover a pixel, culled a share per thread: (visible,
         chunks) for the rasterize kernels."""
         m = len(triangles)
-        count = self.threads if m >= 4096 and len(self.rows) > 1 else 1
+        count = self.threads if m >= MANY_TRIANGLES else 1
         edges = [m * k // count for k in range(count + 1)]
         chunks = np.array(list(zip(edges, edges[1:])), np.int64).reshape(-1, 2)
         visible = np.empty(m, np.int32)

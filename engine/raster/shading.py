@@ -174,9 +174,10 @@ def light_phong(pixels, count, origin_x, origin_y, planes, lighting, hits, shade
     [0, 255]. lighting: `Lighting`. shaded rows 2 to 5: scratch. origin_x, origin_y: a
     point near the triangle, the same for all its pixels (see below).
 
-    Two passes: the lighting, in float32 with no branch and no call, which LLVM vectorises;
-    then the writes, with the highlight's ``pow`` for the pixels near the highlight (where
-    Phong's cosine reaches `highlight_threshold`).
+    Two passes: the lighting, in float32 with no branch and no call, which LLVM vectorises,
+    highlight included when the exponent is whole (`_whole_power`); then the writes, with
+    the highlight's ``pow`` for the pixels near the highlight (where Phong's cosine reaches
+    `highlight_threshold`) when the exponent has a fraction.
 
     Only the albedo needs the attribute over q: the normal and the vectors to the light and
     to the eye are each normalised, and scaling by q > 0 (1 / w, positive in front of the
@@ -207,6 +208,11 @@ def light_phong(pixels, count, origin_x, origin_y, planes, lighting, hits, shade
     v0y, vyx, vyy = _towards(planes, 3, ey, q, py)
     v0z, vzx, vzy = _towards(planes, 4, ez, q, pz)
     ambient, diffuse = np.float32(lighting.ambient), np.float32(lighting.diffuse)
+    threshold = np.float32(lighting.highlight_threshold)
+    specular = np.float32(255.0 * lighting.specular)
+    shininess = np.float32(lighting.shininess)
+    power = np.int64(lighting.shininess)
+    whole = power == lighting.shininess and power < 1024  # as the default, 24
     fx, fy = np.float32(ox), np.float32(oy)
     zero, one = np.float32(0.0), np.float32(1.0)
     for j in range(count):
@@ -227,18 +233,50 @@ def light_phong(pixels, count, origin_x, origin_y, planes, lighting, hits, shade
         shaded[2, j] = (a0r + u * arx + v * ary) * intensity
         shaded[3, j] = (a0g + u * agx + v * agy) * intensity
         shaded[4, j] = (a0b + u * abx + v * aby) * intensity
-        shaded[5, j] = n_dot_h if lit else -one
-    threshold = lighting.highlight_threshold
-    specular = np.float32(255.0 * lighting.specular)
-    shininess = np.float32(lighting.shininess)
+        n_dot_h = n_dot_h if lit else -one
+        shaded[5, j] = n_dot_h
+        if whole:
+            shaded[5, j] = specular * _whole_power(n_dot_h, power) if n_dot_h > threshold \
+                else zero
     three = np.uint64(3)
     for j in range(count):
-        n_dot_h = shaded[5, j]
-        highlight = specular * n_dot_h ** shininess if n_dot_h > threshold else zero
+        if whole:
+            highlight = shaded[5, j]
+        else:
+            n_dot_h = shaded[5, j]
+            highlight = specular * n_dot_h ** shininess if n_dot_h > threshold else zero
         offset = three * np.uint64(hits[j])
         pixels[offset] = _byte(shaded[2, j] + highlight)
         pixels[offset + np.uint64(1)] = _byte(shaded[3, j] + highlight)
         pixels[offset + np.uint64(2)] = _byte(shaded[4, j] + highlight)
+
+
+@helper
+def _whole_power(x, power):
+    """x ** power for a whole power below 1024, by squaring (x float32, power int64): ten
+    multiplications and ten selects, with no loop and no call, so that it vectorises with
+    the loop it is in, where ``pow`` would be called pixel by pixel."""
+    one = np.float32(1.0)
+    result = x if power & 1 else one
+    x *= x
+    result *= x if power & 2 else one
+    x *= x
+    result *= x if power & 4 else one
+    x *= x
+    result *= x if power & 8 else one
+    x *= x
+    result *= x if power & 16 else one
+    x *= x
+    result *= x if power & 32 else one
+    x *= x
+    result *= x if power & 64 else one
+    x *= x
+    result *= x if power & 128 else one
+    x *= x
+    result *= x if power & 256 else one
+    x *= x
+    result *= x if power & 512 else one
+    return result
 
 
 @helper

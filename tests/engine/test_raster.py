@@ -470,3 +470,28 @@ def test_render_refuses_bad_options(options):
 def test_render_refuses_triangles_indexing_missing_vertices():
     with pytest.raises(ValueError):
         render([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [[0, 1, 3]])
+
+
+def test_a_mesh_passed_again_is_drawn_as_it_is_now():
+    # The renderer keeps a mesh's read-only arrays between frames; a new mesh of as many
+    # vertices, or a writeable array changed in place, is drawn anew.
+    vertices, normals, faces = sphere(2)
+    renderer = Renderer(threads=1)
+    camera, light = plain_camera(3.0, 60.0), flat_light()
+    albedo = np.ones((len(vertices), 3), np.float32)
+
+    def draw(points):
+        return renderer.render(points, normals, faces, albedo, np.eye(4), camera, light, 32,
+                               32).copy()
+
+    fixed = vertices.copy()
+    fixed.flags.writeable = False
+    first = draw(fixed)
+    moved = fixed + [0.5, 0.0, 0.0]
+    moved.flags.writeable = False
+    assert np.count_nonzero(draw(moved) != first) > 0
+    assert np.array_equal(draw(fixed), first)
+    changing = vertices.copy()
+    assert np.array_equal(draw(changing), first)
+    changing += [0.5, 0.0, 0.0]
+    assert np.array_equal(draw(changing), draw(moved))
