@@ -94,7 +94,7 @@ class Bands:
         hits = max(2 * fine_w, HITS)
         self.scratch = [
             (np.empty((2, fine_h), np.int64), np.empty((11, 3)), np.empty(hits, np.int64),
-             np.empty((6, hits), np.float32), np.empty(3 * fine_w, np.int32))
+             np.empty((8, hits), np.float32), np.empty(3 * fine_w, np.int32))
             for _ in self.rows
         ]
         self._shape = (height, width, ssaa)

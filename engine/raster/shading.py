@@ -146,21 +146,27 @@ def shade_phong(pixels, depths, start, end, xc, yc, planes, lighting, hits, shad
     lights them all at once, once per triangle (or when the list is full). Returns the
     length of the list, ``count`` before.
 
-    hits: (c,) int64, the pixels' offsets; shaded: (6, c) float32, rows 0 and 1 their
+    hits: (c,) int64, the pixels' offsets; shaded: (8, c) float32, rows 0 and 1 their
     centres' x and y. A triangle's pixels lit in one loop, rather than a span's, make that
     loop long enough for LLVM's vector code to pay (a span of a small triangle is a few
     pixels long, and its setup costs as much as the pixels); and a pixel is lit once per
     triangle found nearest so far, never once per triangle covering it.
     """
+    # x stepped by adding 1, exact for half-integers (and the same x as ``xc + (i - start)``):
+    # converting the unsigned offset to a float, pixel by pixel, cost as much again as the
+    # rest of the loop (x86 has no instruction for it before AVX-512).
+    x = xc
+    z0, zx, zy = planes[0, 0], planes[0, 1], planes[0, 2]
+    y = np.float32(yc)
     for i in range(start, end):
-        x = xc + np.float64(i - start)
-        depth = np.float32(planes[0, 0] + planes[0, 1] * x + planes[0, 2] * yc)
+        depth = np.float32(z0 + zx * x + zy * yc)
         if depth > depths[i]:
             depths[i] = depth
             hits[count] = np.int64(i)
             shaded[0, count] = np.float32(x)
-            shaded[1, count] = np.float32(yc)
+            shaded[1, count] = y
             count += 1
+        x += 1.0
     return count
 
 
@@ -171,12 +177,12 @@ def light_phong(pixels, count, origin_x, origin_y, planes, lighting, hits, shade
     Pictures", 1977) of a white point light, with each pixel's interpolated normal.
 
     planes: depth, q, and times q: world position (3), world normal (3), albedo (3) in
-    [0, 255]. lighting: `Lighting`. shaded rows 2 to 5: scratch. origin_x, origin_y: a
+    [0, 255]. lighting: `Lighting`. shaded rows 2 to 7: scratch. origin_x, origin_y: a
     point near the triangle, the same for all its pixels (see below).
 
-    Two passes: the lighting, in float32 with no branch and no call, which LLVM vectorises,
-    highlight included when the exponent is whole (`_whole_power`); then the writes, with
-    the highlight's ``pow`` for the pixels near the highlight (where Phong's cosine reaches
+    Passes: the lighting, in float32 with no branch and no call, which LLVM vectorises;
+    the highlight's power for a whole exponent, as the default (`_whole_powers`); then the
+    writes, with a ``pow`` for the pixels near the highlight (where Phong's cosine reaches
     `highlight_threshold`) when the exponent has a fraction.
 
     Only the albedo needs the attribute over q: the normal and the vectors to the light and
@@ -212,7 +218,7 @@ def light_phong(pixels, count, origin_x, origin_y, planes, lighting, hits, shade
     specular = np.float32(255.0 * lighting.specular)
     shininess = np.float32(lighting.shininess)
     power = np.int64(lighting.shininess)
-    whole = power == lighting.shininess and power < 1024  # as the default, 24
+    whole = power == lighting.shininess  # as the default, 24
     fx, fy = np.float32(ox), np.float32(oy)
     zero, one = np.float32(0.0), np.float32(1.0)
     for j in range(count):
@@ -233,18 +239,16 @@ def light_phong(pixels, count, origin_x, origin_y, planes, lighting, hits, shade
         shaded[2, j] = (a0r + u * arx + v * ary) * intensity
         shaded[3, j] = (a0g + u * agx + v * agy) * intensity
         shaded[4, j] = (a0b + u * abx + v * aby) * intensity
-        n_dot_h = n_dot_h if lit else -one
-        shaded[5, j] = n_dot_h
-        if whole:
-            shaded[5, j] = specular * _whole_power(n_dot_h, power) if n_dot_h > threshold \
-                else zero
+        shaded[5, j] = n_dot_h if lit else -one
+    if whole:
+        _whole_powers(shaded, count, power)
     three = np.uint64(3)
     for j in range(count):
-        if whole:
-            highlight = shaded[5, j]
+        n_dot_h = shaded[5, j]
+        if n_dot_h > threshold:
+            highlight = specular * (shaded[6, j] if whole else n_dot_h ** shininess)
         else:
-            n_dot_h = shaded[5, j]
-            highlight = specular * n_dot_h ** shininess if n_dot_h > threshold else zero
+            highlight = zero
         offset = three * np.uint64(hits[j])
         pixels[offset] = _byte(shaded[2, j] + highlight)
         pixels[offset + np.uint64(1)] = _byte(shaded[3, j] + highlight)
@@ -252,31 +256,25 @@ def light_phong(pixels, count, origin_x, origin_y, planes, lighting, hits, shade
 
 
 @helper
-def _whole_power(x, power):
-    """x ** power for a whole power below 1024, by squaring (x float32, power int64): ten
-    multiplications and ten selects, with no loop and no call, so that it vectorises with
-    the loop it is in, where ``pow`` would be called pixel by pixel."""
+def _whole_powers(shaded, count, power):
+    """shaded[6, :count] = shaded[5, :count] ** power, for a whole power, by squaring
+    (shaded[7] the squares): a pass over the pixels for each bit of the power, each a
+    loop of a multiplication that LLVM vectorises, where ``pow`` would be called pixel by
+    pixel. For the default 24, four squarings and two multiplications a pixel."""
     one = np.float32(1.0)
-    result = x if power & 1 else one
-    x *= x
-    result *= x if power & 2 else one
-    x *= x
-    result *= x if power & 4 else one
-    x *= x
-    result *= x if power & 8 else one
-    x *= x
-    result *= x if power & 16 else one
-    x *= x
-    result *= x if power & 32 else one
-    x *= x
-    result *= x if power & 64 else one
-    x *= x
-    result *= x if power & 128 else one
-    x *= x
-    result *= x if power & 256 else one
-    x *= x
-    result *= x if power & 512 else one
-    return result
+    odd = power & 1
+    for j in range(count):
+        x = shaded[5, j]
+        shaded[7, j] = x
+        shaded[6, j] = x if odd else one
+    bit = 2
+    while bit <= power:
+        for j in range(count):
+            shaded[7, j] *= shaded[7, j]
+        if power & bit:
+            for j in range(count):
+                shaded[6, j] *= shaded[7, j]
+        bit <<= 1
 
 
 @helper
