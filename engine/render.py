@@ -136,7 +136,7 @@ class Renderer:
     def _transform(self, shading, light, albedo, model, view_projection, width, height):
         """The vertex stage, from the vertices and normals copied in: world positions and
         normals, then at once (two threads for a large mesh) clip space and screen positions,
-        and what the rasterizer interpolates for ``shading`` (returned: (n, a) float64)."""
+        and what the rasterizer interpolates for ``shading`` (returned: (a, n) float64)."""
         np.copyto(self._albedo, np.asarray(albedo).T)
         raster.transform_vertices(self._vertices, self._normals, model, _normal_matrix(model),
                                   self._world, self._world_normals)
@@ -201,7 +201,7 @@ class Renderer:
         room = max(crossing, 1) * raster.MAX_POLYGON
         out_xy = np.empty((2, room), np.int64)
         out_z, out_q = np.empty(room), np.empty(room)
-        out_attributes = np.empty((room, attributes.shape[1]))
+        out_attributes = np.empty((attributes.shape[0], room))
         out_triangles = np.empty((room, 3), np.int32)
         counts = np.zeros(2, np.int64)
         raster.clip_triangles(triangles, self._clip, self._screen_xy, self._screen_z,
@@ -236,9 +236,9 @@ class Renderer:
         self._screen_z = np.empty(count)
         self._screen_q = np.empty(count)
         self._outcodes = np.empty(count, np.uint8)
-        self._colours = np.empty((count, 3))
-        self._phong_attributes = np.empty((count, 9))
-        self._no_attributes = np.empty((count, 0))
+        self._colours = np.empty((3, count))
+        self._phong_attributes = np.empty((9, count))
+        self._no_attributes = np.empty((0, count))
         self._vertex_count = count
 
 

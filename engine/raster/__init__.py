@@ -26,10 +26,7 @@ one keeps float32's precision at any distance (Reed, "Depth Precision Visualized
 
 Layouts. Per-vertex arrays are component-major, ``(3, n)`` rather than the mesh's
 ``(n, 3)``: with every matrix read into registers first, LLVM then vectorises the vertex
-loops (AVX), several times faster than loops over rows. All but the attributes the
-rasterizer interpolates, ``(n, a)``, which it reads three vertices at a time: one vertex's
-nine Phong attributes in one or two cache lines rather than nine (component-major, those
-misses made Phong's triangle setup cost twice Gouraud's whole triangle). The frame buffers are passed
+loops (AVX), several times faster than loops over rows. The frame buffers are passed
 flattened, ``pixels: (3 h w,) uint8`` and ``depths: (h w,) float32`` (views of the
 ``(h, w, 3)`` and ``(h, w)`` buffers), so that the inner loops index them with one unsigned
 offset: numba adds a negative-index fix-up to every signed index, which costs as much as

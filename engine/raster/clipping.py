@@ -102,16 +102,16 @@ def clip_triangles(triangles, clip, screen_xy, screen_z, screen_q, outcodes, att
     write what is left of them as a mesh for the rasterize kernels.
 
     triangles: (m, 3) int32; clip: (4, n), screen_xy: (2, n), screen_z: (n,), screen_q:
-    (n,), outcodes: (n,) from `project_vertices`; attributes: (n, a) float64; width, height: the
+    (n,), outcodes: (n,) from `project_vertices`; attributes: (a, n) float64; width, height: the
     screen. Writes out_xy: (2, k) int64, out_z: (k,) float64, out_q: (k,) float64,
-    out_attributes: (k, a) float64 and out_triangles: (j, 3) int32, room enough being
+    out_attributes: (a, k) float64 and out_triangles: (j, 3) int32, room enough being
     ``MAX_POLYGON`` vertices and ``MAX_POLYGON - 2`` triangles per triangle to clip, and
     counts: (2,) int64, the vertices and triangles written. Each clipped triangle leaves a
     convex polygon, drawn as a fan (the near plane alone leaves a triangle or a
     quadrilateral).
     """
     gx, gy = _guard(width), _guard(height)
-    a = attributes.shape[1]
+    a = attributes.shape[0]
     polygon = np.empty((2, MAX_POLYGON, 4 + a))
     source = np.empty((2, MAX_POLYGON), np.int64)
     vertex_count = triangle_count = 0
@@ -127,7 +127,7 @@ def clip_triangles(triangles, clip, screen_xy, screen_z, screen_q, outcodes, att
             for c in range(4):
                 polygon[0, k, c] = clip[c, v]
             for c in range(a):
-                polygon[0, k, 4 + c] = attributes[v, c]
+                polygon[0, k, 4 + c] = attributes[c, v]
             source[0, k] = v
         n, slot = 3, 0
         for plane in CLIP_PLANES:
@@ -147,7 +147,7 @@ def clip_triangles(triangles, clip, screen_xy, screen_z, screen_q, outcodes, att
                     polygon[slot, k, 0], polygon[slot, k, 1], polygon[slot, k, 2],
                     polygon[slot, k, 3], width, height)
             for c in range(a):
-                out_attributes[o, c] = polygon[slot, k, 4 + c]
+                out_attributes[c, o] = polygon[slot, k, 4 + c]
         for k in range(1, n - 1):
             out_triangles[triangle_count, 0] = vertex_count
             out_triangles[triangle_count, 1] = vertex_count + k

@@ -59,8 +59,8 @@ def _drift(q0, q1, q2, attributes, i0, i1, i2):
     high = high if high > q2 else q2
     root = math.sqrt(high / low)
     spread = 0.0
-    for k in range(attributes.shape[1]):
-        a0, a1, a2 = attributes[i0, k], attributes[i1, k], attributes[i2, k]
+    for k in range(attributes.shape[0]):
+        a0, a1, a2 = attributes[k, i0], attributes[k, i1], attributes[k, i2]
         least = a0 if a0 < a1 else a1
         least = least if least < a2 else a2
         most = a0 if a0 > a1 else a1
@@ -76,7 +76,7 @@ def _cover(i0, i1, i2, perspective, screen_xy, screen_z, screen_q, attributes, w
     band_end``, and its planes: returns (first, end), the rows that may hold pixels.
 
     screen_xy: (2, n) int64, screen_z: (n,) float64, screen_q: (n,) float64 (1 / w),
-    attributes: (n, a) float64. span_lo, span_hi: (height,) int64 and planes:
+    attributes: (a, n) float64. span_lo, span_hi: (height,) int64 and planes:
     (>= 2 + a, 3) float64: scratch, written with the spans and with the planes of the
     depth, of q = 1 / w and of each attribute times q (q taken as 1 unless ``perspective``).
     """
@@ -94,9 +94,9 @@ def _cover(i0, i1, i2, perspective, screen_xy, screen_z, screen_q, attributes, w
     _set_plane(planes, 0, fx, fy, e1x, e1y, e2x, e2y, inv_det, screen_z[i0], screen_z[i1],
                screen_z[i2])
     _set_plane(planes, 1, fx, fy, e1x, e1y, e2x, e2y, inv_det, q0, q1, q2)
-    for k in range(attributes.shape[1]):
-        _set_plane(planes, 2 + k, fx, fy, e1x, e1y, e2x, e2y, inv_det, attributes[i0, k] * q0,
-                   attributes[i1, k] * q1, attributes[i2, k] * q2)
+    for k in range(attributes.shape[0]):
+        _set_plane(planes, 2 + k, fx, fy, e1x, e1y, e2x, e2y, inv_det, attributes[k, i0] * q0,
+                   attributes[k, i1] * q1, attributes[k, i2] * q2)
     return first, end
 
 
@@ -203,7 +203,7 @@ def rasterize_gouraud(triangles, visible, chunks, screen_xy, screen_z, screen_q,
     triangles: (m, 3) int32, counter-clockwise seen from the front. visible: (m,) int32 and
     chunks: (k, 2) int64 from `cull.cull_triangles`: the triangles to draw, in order.
     screen_xy: (2, n) int64, screen_z: (n,) float64, screen_q: (n,) float64 from
-    `project_vertices` (or `clip_triangles`). attributes: (n, a) float64, from
+    `project_vertices` (or `clip_triangles`). attributes: (a, n) float64, from
     `light_vertices` (Gouraud, a = 3) or `phong_vertices` (Phong, a = 9); any for overdraw.
     lighting: `Lighting` (used by Phong).
     pixels: (3 h w,) uint8 and depths: (h w,) float32, the frame buffers flattened,

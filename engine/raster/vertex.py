@@ -111,8 +111,7 @@ def light_vertices(world, world_normals, albedo, light_position, ambient, diffus
 
     world, world_normals: (3, n) float64. albedo: (3, n) float32 in [0, 1].
     light_position: (3,) float64, world space. ambient, diffuse: weights.
-    Writes colours: (n, 3) float64 in [0, 255] (vertex-major, as the rasterizer reads
-    them: see ``engine/raster/__init__.py``).
+    Writes colours: (3, n) float64 in [0, 255].
     """
     px, py, pz = light_position[0], light_position[1], light_position[2]
     for i in range(world.shape[1]):
@@ -126,7 +125,7 @@ def light_vertices(world, world_normals, albedo, light_position, ambient, diffus
             # Clamped to [0, 255], NaN giving 0, as `shading._channel` (written out: no helpers).
             value = albedo[c, i] * intensity
             value = value if value > 0.0 else 0.0
-            colours[i, c] = value if value < 255.0 else 255.0
+            colours[c, i] = value if value < 255.0 else 255.0
 
 
 @ngjit
@@ -134,10 +133,10 @@ def phong_vertices(world, world_normals, albedo, attributes):
     """Phong's vertex attributes, interpolated per pixel and lit there.
 
     world, world_normals: (3, n) float64. albedo: (3, n) float32 in [0, 1].
-    Writes attributes: (n, 9) float64: position (3), normal (3), 255 albedo (3).
+    Writes attributes: (9, n) float64: position (3), normal (3), 255 albedo (3).
     """
-    for i in range(world.shape[1]):
-        for c in range(3):
-            attributes[i, c] = world[c, i]
-            attributes[i, 3 + c] = world_normals[c, i]
-            attributes[i, 6 + c] = 255.0 * albedo[c, i]
+    for c in range(3):
+        for i in range(world.shape[1]):
+            attributes[c, i] = world[c, i]
+            attributes[3 + c, i] = world_normals[c, i]
+            attributes[6 + c, i] = 255.0 * albedo[c, i]

@@ -70,7 +70,7 @@ def draw_on_screen(points, triangles, width, height, *, colours=None,
     clip, xy = np.empty((4, n)), np.empty((2, n), np.int64)
     z, q, codes = np.empty(n), np.empty(n), np.empty(n, np.uint8)
     raster.project_vertices(world, np.eye(4), width, height, clip, xy, z, q, codes)
-    attributes = np.empty((n, 0)) if colours is None else np.ascontiguousarray(colours)
+    attributes = np.empty((0, n)) if colours is None else np.ascontiguousarray(colours.T)
     colour = np.zeros((height, width, 3), np.uint8)
     depths = np.zeros(height * width, np.float32)  # the far plane
     triangles = np.ascontiguousarray(triangles, dtype=np.int32)
