@@ -153,13 +153,12 @@ def shade_phong(pixels, depths, start, end, xc, yc, planes, lighting, hits, shad
     triangle found nearest so far, never once per triangle covering it.
     """
     # x stepped by adding 1, exact for half-integers (and the same x as ``xc + (i - start)``):
-    # converting the unsigned offset to a float, pixel by pixel, cost as much again as the
-    # rest of the loop (x86 has no instruction for it before AVX-512).
+    # converting the unsigned offset to a float, pixel by pixel, cost 0.4 ms of a 7 ms
+    # close-up (x86 has no instruction for it before AVX-512).
     x = xc
-    z0, zx, zy = planes[0, 0], planes[0, 1], planes[0, 2]
     y = np.float32(yc)
     for i in range(start, end):
-        depth = np.float32(z0 + zx * x + zy * yc)
+        depth = np.float32(planes[0, 0] + planes[0, 1] * x + planes[0, 2] * yc)
         if depth > depths[i]:
             depths[i] = depth
             hits[count] = np.int64(i)
