@@ -11,7 +11,8 @@ does, and the thin arm then covers a few percent of the picture; "belly" frames 
 of the muscle, which then covers about 30 % (a fill-rate test). Each row gives the share of
 pixels drawn in both views. The baselines come first, measured in the same run (clearing
 the buffers as the renderer does, and with numpy's plain fill), so that ratios stay meaningful on a
-noisy machine. No kernel is parallel; NUMBA_NUM_THREADS=1 only makes sure of it.
+noisy machine. One thread (BICEPS_THREADS=1, unless set), so that the figures of one
+version compare with another's; benchmarks/vs_llvmpipe.py measures every core.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ import statistics
 import time
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+os.environ.setdefault("BICEPS_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
