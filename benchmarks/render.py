@@ -11,8 +11,8 @@ does, and the thin arm then covers a few percent of the picture; "belly" frames 
 of the muscle, which then covers about 30 % (a fill-rate test). Each row gives the share of
 pixels drawn in both views. The baselines come first, measured in the same run (clearing
 the buffers as the renderer does, and with numpy's plain fill), so that ratios stay meaningful on a
-noisy machine. One thread (BICEPS_THREADS=1, unless set), so that the figures of one
-version compare with another's; benchmarks/vs_llvmpipe.py measures every core.
+noisy machine. One thread (``Renderer(threads=1)``), so that the figures of one version
+compare with another's; benchmarks/vs_llvmpipe.py measures every core.
 """
 
 from __future__ import annotations
@@ -24,7 +24,6 @@ import statistics
 import time
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
-os.environ.setdefault("BICEPS_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
@@ -104,7 +103,7 @@ def main() -> None:
     budget = 0.3 if args.quick else 1.0
     light = Light()
     model = model_matrix(math.radians(-25.0), math.radians(10.0), 0.0)
-    renderer = Renderer()
+    renderer = Renderer(threads=1)
 
     print("baselines (ms)")
     print(f"{'size':>11}{'clear':>9}{'numpy fills':>13}")
