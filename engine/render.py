@@ -174,16 +174,14 @@ class Renderer:
         supersampled: band by band, a thread each (``engine/raster/bands.py``)."""
         full_h, full_w = self._depth.shape
         _, width, ssaa = self._frame
-        culled = [self._bands.cull(mesh[0], mesh[1], mesh[4], full_w, full_h)
-                  for mesh in meshes]
         pixels, depths = self._colour.reshape(-1), self._depth.reshape(-1)
 
         def draw_band(start, end, scratch):
             spans, planes, hits, shaded, columns = scratch
             clear(self._colour[start:end], self._depth[start:end], background)
-            for (triangles, xy, z, q, _, attributes), (visible, chunks) in zip(meshes, culled):
-                rasterize(triangles, visible, chunks, xy, z, q, attributes, lighting, pixels,
-                          depths, full_w, start, end, spans, planes, hits, shaded)
+            for triangles, xy, z, q, outcodes, attributes in meshes:
+                rasterize(triangles, xy, z, q, outcodes, attributes, lighting, pixels, depths,
+                          full_w, start, end, spans, planes, hits, shaded)
             if ssaa > 1:
                 raster.downsample(self._colour[start:end].reshape(-1), ssaa,
                                   self._output[start // ssaa:end // ssaa].reshape(-1), width,

@@ -11,12 +11,10 @@ buffers and return nothing. ``engine/render.py`` calls them once each per frame:
 4. Only when some vertex is outside a clipping plane: ``clipping.clip_triangles`` cuts the
    triangles that cross one into a small mesh already in screen space, drawn after the
    others by the same kernels.
-5. ``cull.cull_triangles``: the triangles that may cover a pixel (inside the clipping
-   planes, front-facing, on the screen), a share of the triangles per thread.
-6. Band by band, a thread each (``bands``): clear the band's rows
+5. Band by band, a thread each (``bands``): clear the band's rows
    (``engine.render.clear``), then ``draw.rasterize_gouraud``, ``rasterize_phong`` or
-   ``rasterize_overdraw`` on them: per triangle, cover (``coverage``) and shade
-   (``shading``); then ``resample.downsample`` averages supersampled pixels.
+   ``rasterize_overdraw`` on them: per triangle, reject, cull, cover (``coverage``) and
+   shade (``shading``); then ``resample.downsample`` averages supersampled pixels.
 
 Spaces are those of ``engine/transforms.py``: OpenGL clip space, then screen space with
 ``x`` right and ``y`` down in pixels, pixel ``(x, y)`` centred at ``(x + 0.5, y + 0.5)``,
@@ -42,7 +40,6 @@ compiled again.
 from biceps.engine.raster.clipping import (BOTTOM, CLIP_MASK, FAR, INVALID, LEFT, MAX_POLYGON,
                                            NEAR, RIGHT, TOP, clip_triangles)
 from biceps.engine.raster.coverage import band_spans, triangle_spans
-from biceps.engine.raster.cull import cull_triangles
 from biceps.engine.raster.draw import rasterize_gouraud, rasterize_overdraw, rasterize_phong
 from biceps.engine.raster.resample import downsample
 from biceps.engine.raster.shading import Lighting, highlight_threshold
@@ -51,7 +48,7 @@ from biceps.engine.raster.vertex import (light_vertices, phong_vertices, project
 
 __all__ = [
     "BOTTOM", "CLIP_MASK", "FAR", "INVALID", "LEFT", "MAX_POLYGON", "NEAR", "RIGHT", "TOP",
-    "Lighting", "band_spans", "clip_triangles", "cull_triangles", "downsample",
+    "Lighting", "band_spans", "clip_triangles", "downsample",
     "highlight_threshold", "light_vertices", "phong_vertices", "project_vertices",
     "rasterize_gouraud", "rasterize_overdraw", "rasterize_phong", "transform_vertices",
     "triangle_spans",

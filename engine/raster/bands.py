@@ -5,8 +5,9 @@ Each band is cleared, rasterized and (when supersampled) averaged down by one th
 alone writes its rows: no two threads ever touch one pixel. Every band draws the triangles
 in the same order and a span's pixels do not depend on where the band starts
 (`coverage.band_spans`), so the picture is the same, byte for byte, on any number of
-threads. The triangles are culled beforehand, a share of them per thread
-(``engine/raster/cull.py``), so that no band repeats the tests that throw most of them out.
+threads. Each band tests every triangle against its rows first, the cheapest test; culling
+them once for all bands, a share per thread, took a kernel of its own, which added half a
+second to the first run's compilation for no gain measurable on two cores.
 
 Threads rather than numba's ``parallel=True``: its default thread pool (workqueue) aborts
 the process when two threads start parallel kernels at once, which the app does (a frame
@@ -25,7 +26,6 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from biceps.engine.raster.cull import cull_triangles
 
 THREADS_VARIABLE = "BICEPS_THREADS"
 
@@ -33,9 +33,6 @@ SMALL_PICTURE = 32_000
 """Pixels below which a frame is drawn in one band, on the calling thread: handing a band
 to another thread and waiting for it costs tens of microseconds, as much as drawing a
 small picture."""
-
-MANY_TRIANGLES = 16_384
-"""Triangles from which culling them pays for more threads than one."""
 
 HITS = 4096
 """The pixels Phong lists before it lights them (``engine/raster/shading.py``), at least:
@@ -98,19 +95,6 @@ class Bands:
             for _ in self.rows
         ]
         self._shape = (height, width, ssaa)
-
-    def cull(self, triangles, screen_xy, outcodes, width, height) -> tuple:
-        """The triangles that may cover a pixel, culled a share per thread: (visible,
-        chunks) for the rasterize kernels."""
-        m = len(triangles)
-        count = self.threads if m >= MANY_TRIANGLES else 1
-        edges = [m * k // count for k in range(count + 1)]
-        chunks = np.array(list(zip(edges, edges[1:])), np.int64).reshape(-1, 2)
-        visible = np.empty(m, np.int32)
-        run_all(lambda chunk=chunk: cull_triangles(triangles, screen_xy, outcodes, width,
-                                                   height, chunks, chunk, visible)
-                for chunk in range(count))
-        return visible, chunks
 
     def draw(self, draw_band) -> None:
         """Call ``draw_band(start, end, scratch)`` for every band at once: its rows

@@ -74,9 +74,7 @@ def draw_on_screen(points, triangles, width, height, *, colours=None,
     colour = np.zeros((height, width, 3), np.uint8)
     depths = np.zeros(height * width, np.float32)  # the far plane
     triangles = np.ascontiguousarray(triangles, dtype=np.int32)
-    visible, chunks = np.empty(len(triangles), np.int32), np.array([[0, len(triangles)]])
-    raster.cull_triangles(triangles, xy, codes, width, height, chunks, 0, visible)
-    kernel(triangles, visible, chunks, xy, z, q, attributes, raster.Lighting(*[0.0] * 11),
+    kernel(triangles, xy, z, q, codes, attributes, raster.Lighting(*[0.0] * 11),
            colour.reshape(-1), depths, width, 0, height, np.empty((2, height), np.int64),
            np.empty((11, 3)), np.empty(width, np.int64), np.empty((8, width), np.float32))
     return colour
