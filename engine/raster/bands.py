@@ -22,6 +22,7 @@ machines; 1 keeps everything on the calling thread.
 from __future__ import annotations
 
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -40,6 +41,7 @@ enough for most triangles' whole share of a band, few enough to stay in the L1 a
 caches."""
 
 _pool: ThreadPoolExecutor | None = None
+_pool_lock = threading.Lock()  # two renderers (the app's, an export's) may start it at once
 
 
 def default_threads() -> int:
@@ -57,9 +59,13 @@ def run_all(tasks) -> None:
     and return once all have, raising the first error any raised."""
     global _pool
     tasks = list(tasks)
-    if len(tasks) > 1 and _pool is None:
-        _pool = ThreadPoolExecutor(max_workers=max(default_threads(), len(tasks)) - 1,
-                                   thread_name_prefix="biceps-band")
+    if len(tasks) > 1:
+        with _pool_lock:
+            if _pool is None:
+                # Its threads only ever run tasks to the end, never wait on another, so
+                # renderers sharing it cannot deadlock, whatever their number of bands.
+                _pool = ThreadPoolExecutor(max_workers=max(default_threads(), len(tasks)) - 1,
+                                           thread_name_prefix="biceps-band")
     futures = [_pool.submit(task) for task in tasks[1:]]
     try:
         tasks[0]()

@@ -138,13 +138,13 @@ def _draw_triangle_lit(shade, light, i0, i1, i2, screen_xy, screen_z, screen_q, 
                         band_start, band_end, span_lo, span_hi, planes)
     # Where ``light`` steps from: the centre of the pixel nearest the first vertex on the
     # screen, the same in every band (so the picture is too) and never far from a pixel.
-    x = screen_xy[0, i0] >> SUBPIXEL_BITS
-    y = screen_xy[1, i0] >> SUBPIXEL_BITS
+    column = screen_xy[0, i0] >> SUBPIXEL_BITS
+    row = screen_xy[1, i0] >> SUBPIXEL_BITS
     height = depths.shape[0] // width
-    x = x if x > 0 else 0
-    y = y if y > 0 else 0
-    origin_x = (x if x < width else width - 1) + 0.5
-    origin_y = (y if y < height else height - 1) + 0.5
+    column = column if column > 0 else 0
+    row = row if row > 0 else 0
+    origin_x = (column if column < width else width - 1) + 0.5
+    origin_y = (row if row < height else height - 1) + 0.5
     count = 0
     for y in range(first, end):
         lo, hi = span_lo[y], span_hi[y]
