@@ -1,8 +1,9 @@
-"""The arm in one pose, as meshes: the muscle lying clear of the bones, and the bones.
+"""The arm in one pose, as meshes: the muscles lying clear of the bones, and the bones.
 
-The parts, world space, in centimetres: "muscle", "scapula", "humerus", "radius", "ulna".
-Also where the muscle is tendon: its nodes that do not grow are its tendons (SPEC 2), drawn
-in the tendon's colour, which blends into the belly's over the nodes that grow a little.
+The parts, world space, in centimetres: one per muscle, by its name (the driver first; a
+single-muscle arm's is "muscle"), then "scapula", "humerus", "radius", "ulna". Also where a
+muscle is tendon: its nodes that do not grow are its tendons (SPEC 2), drawn in the
+tendon's colour, which blends into the belly's over the nodes that grow a little.
 """
 
 from __future__ import annotations
@@ -12,34 +13,68 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from biceps.engine.bones import bone_meshes, bone_spheres
-from biceps.engine.clearance import section_offsets, sections_per_segment
-from biceps.engine.mesh import Mesh, muscle_mesh
+from biceps.engine.clearance import path_offsets, sections_per_segment
+from biceps.engine.mesh import Mesh, bent_muscle_mesh, muscle_mesh
+from biceps.engine.muscle import Muscle
+from biceps.engine.path import MusclePath
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
 
-PARTS = ("muscle", "scapula", "humerus", "radius", "ulna")
+BONES = ("scapula", "humerus", "radius", "ulna")
+PARTS = ("muscle", *BONES)
+"""A single-muscle arm's parts."""
 
 
-def arm_parts(arm: Arm, segments: int) -> dict[str, Mesh]:
-    """The arm in its current pose, by part (see ``PARTS``), world space."""
-    pose, skeleton, muscle = arm.pose, arm.skeleton, arm.muscle
+def arm_parts(arm: Arm, segments: int, hidden: frozenset[str] = frozenset()) -> dict[str, Mesh]:
+    """The arm in its current pose, by part: each muscle not ``hidden`` by its name (see
+    :attr:`Arm.names`), then the bones (``BONES``), world space.
+
+    The muscles are laid on the bones one at a time, deepest first: the companions in their
+    order, then the driver over them; each keeps clear of the bones and of those laid
+    before it (hidden or not, so hiding one moves no other).
+    """
+    pose, skeleton = arm.pose, arm.skeleton
     centres, radii = bone_spheres(skeleton, pose)
-    offsets = section_offsets(pose.origin, pose.insertion, muscle.radii, centres, radii,
-                              sections_per_segment(muscle.node_count))
-    body = muscle_mesh(muscle.radii, arm.length, pose.origin, pose.insertion, segments,
-                       offsets=offsets)
-    return {"muscle": body, **bone_meshes(skeleton, pose, segments)}
+    laid = {}
+    order = [*range(1, len(arm.names)), 0]
+    for index in order:
+        mesh, (more_centres, more_radii) = muscle_part(
+            arm.muscles[index], arm.paths[index], pose.flexion, (centres, radii), segments)
+        laid[arm.names[index]] = mesh
+        centres, radii = np.concatenate([centres, more_centres]), np.concatenate([radii, more_radii])
+    parts = {name: laid[name] for name in arm.names if name not in hidden}
+    return {**parts, **bone_meshes(skeleton, pose, segments)}
 
 
-def tendon_share(arm: Arm, muscle: Mesh) -> np.ndarray:
-    """How much each vertex of ``muscle`` (the mesh of `arm_parts`) is tendon: (n,) float32
-    in [0, 1], 1 on the nodes that do not grow, 0 where a node grows at least half as
-    much as the most growing one, linear between nodes."""
-    growth = arm.muscle.growth
-    pose = arm.pose
-    axis = (pose.insertion - pose.origin) / arm.length
+def muscle_part(muscle: Muscle, path: MusclePath, flexion: float,
+                spheres: tuple[np.ndarray, np.ndarray],
+                segments: int) -> tuple[Mesh, tuple[np.ndarray, np.ndarray]]:
+    """One muscle on its path at ``flexion`` degrees, its sections moved clear of
+    ``spheres`` (centres (k, 3), radii (k,)); and its sections as spheres, which the muscles
+    laid after it keep clear of. A straight path's sections stay parallel, so the mesh keeps
+    the muscle's volume exactly (``engine/mesh.py``)."""
+    count = (muscle.node_count - 1) * sections_per_segment(muscle.node_count) + 1
+    points, axes = path.centreline(flexion, count)
+    offsets = path_offsets(points, axes, muscle.radii, *spheres)
+    sections = np.interp(np.linspace(0.0, 1.0, count),
+                         np.linspace(0.0, 1.0, muscle.node_count), muscle.radii)
+    if path.wraps(flexion):
+        mesh = bent_muscle_mesh(muscle.radii, points + offsets, axes, segments)
+    else:
+        mesh = muscle_mesh(muscle.radii, muscle.length, points[0], points[-1], segments,
+                           offsets=offsets)
+    return mesh, (points + offsets, sections)
+
+
+def tendon_share(muscle: Muscle, path: MusclePath, flexion: float, mesh: Mesh) -> np.ndarray:
+    """How much each vertex of ``mesh`` (the muscle's part, see `muscle_part`) is tendon:
+    (n,) float32 in [0, 1], 1 on the nodes that do not grow, 0 where a node grows at least
+    half as much as the most growing one, linear between nodes."""
+    growth = muscle.growth
+    start, end = path.ends(flexion)
+    chord = float(np.linalg.norm(end - start))
     # Each vertex's place along the muscle, in nodes (the caps count as their end node).
-    place = (muscle.vertices - pose.origin) @ axis / arm.length * (len(growth) - 1)
+    place = (mesh.vertices - start) @ ((end - start) / chord) / chord * (len(growth) - 1)
     share = 1.0 - np.clip(growth / (0.5 * growth.max()), 0.0, 1.0)
     return np.interp(place, np.arange(len(growth)), share).astype(np.float32)

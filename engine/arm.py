@@ -1,4 +1,10 @@
-"""The arm: the muscle on its skeleton, changing length within what both allow."""
+"""The arm: the muscle on its skeleton, changing length within what both allow, and the
+other muscles of the elbow, which follow it.
+
+The muscle (the driver, the biceps) sets the elbow's angle by its length; its companions
+(``engine/companion.py``) take the length their paths have at that angle. A single-muscle
+arm is the case with no companions.
+"""
 
 from __future__ import annotations
 
@@ -6,8 +12,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from biceps.engine.companion import Companion, check_reach
 from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import Muscle
+from biceps.engine.path import MusclePath
 from biceps.engine.skeleton import ArmPose, Skeleton
 
 HINGE_AXIS = np.array([0.0, 0.0, 1.0])
@@ -17,7 +25,8 @@ towards ``+x`` (see ``engine/skeleton.py``)."""
 
 @dataclass(frozen=True)
 class Arm:
-    """A muscle, the skeleton it spans and optional limits (cm) on its length.
+    """A muscle, the skeleton it spans, optional limits (cm) on its length, its name and the
+    muscles that follow the elbow with it.
 
     Immutable like :class:`Muscle`: a change returns a new arm or raises
     :class:`RefusedChange` and leaves this one as it was.
@@ -27,6 +36,25 @@ class Arm:
     skeleton: Skeleton
     min_length: float | None = None
     max_length: float | None = None
+    name: str = "muscle"
+    companions: tuple[Companion, ...] = ()
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Every muscle's name, the driver's first."""
+        return (self.name, *(companion.name for companion in self.companions))
+
+    @property
+    def muscles(self) -> tuple[Muscle, ...]:
+        """Every muscle, the driver first, in the order of :attr:`names`."""
+        return (self.muscle, *(companion.muscle for companion in self.companions))
+
+    @property
+    def paths(self) -> tuple[MusclePath, ...]:
+        """Every muscle's path, the driver's (straight, between the skeleton's attachments)
+        first."""
+        driver = MusclePath(self.skeleton.origin, self.skeleton.insertion)
+        return (driver, *(companion.path for companion in self.companions))
 
     @property
     def length(self) -> float:
@@ -82,7 +110,10 @@ class Arm:
                 f"{self.skeleton.flexion(high):.0f} to {self.skeleton.flexion(low):.0f} degrees)"
                 + self._muscle_limit_note(high)
             )
-        return replace(self, muscle=self.muscle.at_length(length))
+        muscle = self.muscle.at_length(length)
+        flexion = self.skeleton.flexion(length)
+        return replace(self, muscle=muscle, companions=tuple(
+            companion.at_flexion(flexion) for companion in self.companions))
 
     def at_flexion(self, flexion: float) -> Arm:
         """The arm with the elbow at ``flexion`` degrees."""
@@ -132,3 +163,13 @@ class Arm:
     def with_muscle(self, muscle: Muscle) -> Arm:
         """The arm with an edited muscle (same length, so the skeleton does not move)."""
         return replace(self, muscle=muscle)
+
+    def with_muscle_at(self, index: int, muscle: Muscle) -> Arm:
+        """The arm with muscle ``index`` of :attr:`muscles` edited (0: the driver); a
+        companion that could then no longer follow the elbow over its range is refused."""
+        if index == 0:
+            return self.with_muscle(muscle)
+        companions = list(self.companions)
+        companions[index - 1] = companions[index - 1].with_muscle(muscle)
+        check_reach(companions[index - 1], self.skeleton.min_flexion, self.skeleton.max_flexion)
+        return replace(self, companions=tuple(companions))

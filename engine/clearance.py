@@ -39,10 +39,17 @@ def forward(start: np.ndarray, end: np.ndarray) -> np.ndarray:
     """(3,) the unit direction, perpendicular to the muscle's line and to the elbow's axis
     (``z``), on the side away from the elbow (the origin of world space): the flexor side."""
     axis = (end - start) / np.linalg.norm(end - start)
-    side = np.array([-axis[1], axis[0], 0.0])  # z x axis
-    side /= np.linalg.norm(side)
-    nearest = start - (start @ axis) * axis  # the line's point nearest the elbow
-    return side if nearest @ side >= 0.0 else -side
+    return _sides(start[None, :], axis[None, :])[0]
+
+
+def _sides(points: np.ndarray, axes: np.ndarray) -> np.ndarray:
+    """(m, 3) for each section (centre and unit axis (m, 3) each) the unit direction across
+    its axis and the elbow's, on the side away from the elbow. Sections of one straight line
+    all take the same side: the centre's component along it is that of the line's nearest
+    point to the elbow."""
+    side = np.column_stack([-axes[:, 1], axes[:, 0], np.zeros(len(axes))])  # z x axis
+    side /= np.linalg.norm(side, axis=1, keepdims=True)
+    return np.where(np.einsum("mc,mc->m", points, side)[:, None] >= 0.0, side, -side)
 
 
 def section_offsets(start, end, radii, centres, sphere_radii,
@@ -53,14 +60,26 @@ def section_offsets(start, end, radii, centres, sphere_radii,
     radii: (n,) the node radii. centres: (k, 3) and sphere_radii: (k,): the bones' spheres.
     """
     start, end = np.asarray(start, dtype=np.float64), np.asarray(end, dtype=np.float64)
-    length = float(np.linalg.norm(end - start))
-    axis = (end - start) / length
-    side = forward(start, end)
     count = (len(radii) - 1) * per_segment + 1
-    along = np.linspace(0.0, length, count)
-    radius = np.interp(along, np.linspace(0.0, length, len(radii)), radii)
-    shift = _least_shifts(start + np.outer(along, axis), radius, axis, side, centres,
-                          sphere_radii)
+    share = np.linspace(0.0, 1.0, count)
+    axis = (end - start) / np.linalg.norm(end - start)
+    return path_offsets(start + np.outer(share, end - start), np.tile(axis, (count, 1)),
+                        radii, centres, sphere_radii)
+
+
+def path_offsets(points, axes, radii, centres, sphere_radii) -> np.ndarray:
+    """The sideways moves (m, 3) of m sections centred at ``points`` (m, 3), equally spaced
+    along a path (straight, or bent round the elbow), each in the plane across its unit
+    ``axes`` (m, 3), that keep the muscle of node ``radii`` (n,) clear of the spheres; m - 1
+    is a multiple of n - 1. On a straight stretch the planes are parallel, so its volume
+    does not change (Cavalieri)."""
+    steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    along = np.concatenate([[0.0], np.cumsum(steps)])
+    length = along[-1]
+    radius = np.interp(np.linspace(0.0, 1.0, len(points)), np.linspace(0.0, 1.0, len(radii)),
+                       radii)
+    side = _sides(points, axes)
+    shift = _least_shifts(points, radius, axes, side, centres, sphere_radii)
     shift[(along < HOLD) | (along > length - HOLD)] = 0.0
     # The least smooth profile above the needs: each need spreads down both ways at SLOPE,
     # max_j (shift_j - SLOPE |a_i - a_j|), the larger of a running maximum from each end
@@ -69,7 +88,7 @@ def section_offsets(start, end, radii, centres, sphere_radii,
     falling = (np.maximum.accumulate((shift - SLOPE * along)[::-1]) + SLOPE * along[::-1])[::-1]
     smooth = np.maximum(rising, falling)
     smooth[[0, -1]] = 0.0  # the attachments themselves stay on the bone
-    return np.outer(smooth, side)
+    return smooth[:, None] * side
 
 
 def sections_per_segment(nodes: int) -> int:
@@ -78,23 +97,23 @@ def sections_per_segment(nodes: int) -> int:
     return max(1, min(RINGS_PER_SEGMENT, (MOST_SECTIONS - 1) // max(nodes - 1, 1)))
 
 
-def _least_shifts(points, radius, axis, side, centres, sphere_radii) -> np.ndarray:
-    """For each section (points (m, 3), radius (m,)), the least move s >= 0 along ``side``
-    that clears every sphere's circle in the section's plane: (m,)."""
+def _least_shifts(points, radius, axes, sides, centres, sphere_radii) -> np.ndarray:
+    """For each section (points (m, 3), radius (m,), unit axis and side (m, 3)), the least
+    move s >= 0 along its side that clears every sphere's circle in its plane: (m,)."""
     return np.concatenate([
-        _block_shifts(points[first:first + _BLOCK], radius[first:first + _BLOCK], axis, side,
+        _block_shifts(*(values[first:first + _BLOCK] for values in (points, radius, axes, sides)),
                       centres, sphere_radii)
         for first in range(0, len(points), _BLOCK)
     ])
 
 
-def _block_shifts(points, radius, axis, side, centres, sphere_radii) -> np.ndarray:
+def _block_shifts(points, radius, axes, sides, centres, sphere_radii) -> np.ndarray:
     offsets = centres[None, :, :] - points[:, None, :]  # (m, k, 3)
-    height = offsets @ axis  # each sphere's centre above the section's plane
+    height = np.einsum("mkc,mc->mk", offsets, axes)  # each sphere's centre above the plane
     cut = np.sqrt(np.maximum(sphere_radii[None, :] ** 2 - height**2, 0.0))
     cuts = np.abs(height) < sphere_radii[None, :]
-    in_plane = offsets - height[..., None] * axis
-    ahead = in_plane @ side
+    in_plane = offsets - height[..., None] * axes[:, None, :]
+    ahead = np.einsum("mkc,mc->mk", in_plane, sides)
     reach = radius[:, None] + cut + GAP
     spread = ahead**2 - np.einsum("mkc,mkc->mk", in_plane, in_plane) + reach**2
     blocked = cuts & (spread > 0.0)

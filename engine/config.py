@@ -16,8 +16,9 @@ import re
 import tomllib
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Annotated, Any, Callable
+from typing import Annotated, Any, Callable, get_args, get_origin
 
+import numpy as np
 import tomlkit
 from pydantic import BaseModel, ConfigDict, Field, PlainValidator, ValidationError, model_validator
 
@@ -35,12 +36,14 @@ from biceps.engine.bounds import (
     quoted,
     whole,
 )
+from biceps.engine.companion import Companion, reach_problem
 from biceps.engine.errors import ConfigError, FileChanged, FileError, RefusedChange
 from biceps.engine.files import read_regular_file, same_file, write_atomically
 from biceps.engine.muscle import Muscle, VolumeMode
 from biceps.engine.names import printable
 from biceps.engine.settings import (
     COLOUR,
+    ColourBy,
     FIELD_OF_VIEW,
     Graphics,
     SEGMENTS,
@@ -49,7 +52,8 @@ from biceps.engine.settings import (
     Shading,
     View,
 )
-from biceps.engine.skeleton import Skeleton, skeleton_problem
+from biceps.engine.path import MusclePath, Wrap, WrapSide
+from biceps.engine.skeleton import Attachment, Skeleton, skeleton_problem
 from biceps.engine.transforms import FRACTION, SHININESS, Light
 
 
@@ -72,6 +76,11 @@ Bone = Annotated[float, _number(BONE)]
 Coordinate = Annotated[float, _number(COORDINATE)]
 Vector = tuple[Coordinate, Coordinate, Coordinate]
 Colour = Annotated[str, Field(pattern=f"^{COLOUR}$")]
+MuscleName = Annotated[str, Field(pattern=r"^[A-Za-z0-9_\-]{1,40}$")]
+
+COMPANION_COLOURS = ("#c8705a", "#a8503a", "#5a7fb4", "#4a6a9a", "#6a8ac8")
+"""The colours companions take when their table names none, in order: warm for the
+flexors, cool for the extensors of configs/elbow.toml's order."""
 
 
 class _Table(BaseModel):
@@ -79,20 +88,19 @@ class _Table(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
-class MuscleTable(_Table):
+class _ProfileTable(_Table):
+    """A muscle's shape: its volume mode, the length (or flexion) at which its nodes are
+    its shape, and the nodes."""
+
     volume: VolumeMode = "closed"
     length: Positive | None = None
     flexion: Degrees | None = None
-    pose_length: Positive | None = None
-    pose_flexion: Degrees | None = None
-    min_length: Positive | None = None
-    max_length: Positive | None = None
     nodes: list[tuple[Radius, Growth]] | None = None
     radius: list[Radius] | None = None
     growth: list[Growth] | None = None
 
     @model_validator(mode="after")
-    def _one_way_each(self) -> MuscleTable:
+    def _one_way_each(self) -> _ProfileTable:
         if self.nodes is None and self.radius is None and self.growth is None:
             raise ValueError(
                 "no nodes: give nodes = [[radius, growth], ...] or the two lists radius and growth"
@@ -109,6 +117,31 @@ class MuscleTable(_Table):
             )
         if (self.length is None) == (self.flexion is None):
             raise ValueError("give exactly one of length (cm) and flexion (degrees)")
+        return self
+
+    def profile(self) -> tuple[list[float], list[float]]:
+        if self.nodes is not None:
+            return [r for r, _ in self.nodes], [m for _, m in self.nodes]
+        return list(self.radius), list(self.growth)
+
+    def nodes_key(self, problem: str) -> str:
+        """The key a ``problem`` with the nodes is reported under."""
+        if self.nodes is not None:
+            return "nodes"
+        return "growth" if "growth" in problem else "radius"
+
+
+class MuscleTable(_ProfileTable):
+    """The driver: the muscle whose length sets the elbow's angle, and the pose shown."""
+
+    name: MuscleName = "muscle"
+    pose_length: Positive | None = None
+    pose_flexion: Degrees | None = None
+    min_length: Positive | None = None
+    max_length: Positive | None = None
+
+    @model_validator(mode="after")
+    def _one_pose(self) -> MuscleTable:
         if self.pose_length is not None and self.pose_flexion is not None:
             raise ValueError(
                 "give at most one of pose_length (cm) and pose_flexion (degrees): the pose "
@@ -116,10 +149,31 @@ class MuscleTable(_Table):
             )
         return self
 
-    def profile(self) -> tuple[list[float], list[float]]:
-        if self.nodes is not None:
-            return [r for r, _ in self.nodes], [m for _, m in self.nodes]
-        return list(self.radius), list(self.growth)
+
+class CompanionTable(_ProfileTable):
+    """A muscle that follows the elbow (``engine/companion.py``): its shape, where it holds
+    on (origin on the upper arm, insertion on the forearm: [along, forward, lateral] cm from
+    the elbow's centre, as the [skeleton]'s attachments), whether it wraps round the elbow
+    and on which side, and its colour."""
+
+    origin: Vector
+    insertion: Vector
+    wrap: WrapSide | None = None
+    wrap_radius: Positive | None = None
+    colour: Colour | None = None
+
+    @model_validator(mode="after")
+    def _wrap_whole(self) -> CompanionTable:
+        if (self.wrap is None) != (self.wrap_radius is None):
+            raise ValueError(
+                "wrap and wrap_radius go together: the side of the elbow the muscle passes "
+                "(\"front\" or \"back\") and the wrapping cylinder's radius in cm")
+        return self
+
+    def path(self) -> MusclePath:
+        wrap = Wrap(self.wrap_radius, self.wrap) if self.wrap is not None else None
+        return MusclePath(Attachment("upper_arm", *self.origin),
+                          Attachment("forearm", *self.insertion), wrap)
 
 
 class SkeletonTable(_Table):
@@ -196,6 +250,7 @@ class RenderTable(_Table):
     bone_colour: Colour = RenderSettings.bone_colour
     background: Colour = RenderSettings.background
     graphics: Graphics = RenderSettings.graphics
+    colour_by: ColourBy = RenderSettings.colour_by
 
     @classmethod
     def of(cls, settings: RenderSettings) -> RenderTable:
@@ -207,6 +262,7 @@ class RenderTable(_Table):
 
 class ConfigFile(_Table):
     muscle: MuscleTable
+    muscles: dict[MuscleName, CompanionTable] = {}
     skeleton: SkeletonTable = SkeletonTable()
     view: ViewTable = ViewTable()
     light: LightTable = LightTable()
@@ -323,10 +379,10 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
     try:
         muscle = Muscle.of(radii, growth, length, muscle_table.volume)
     except RefusedChange as error:
-        key = "nodes" if muscle_table.nodes is not None else \
-            "growth" if "growth" in str(error) else "radius"
-        raise fail(("muscle", key), str(error)) from None
-    arm = Arm(muscle, skeleton, muscle_table.min_length, muscle_table.max_length)
+        raise fail(("muscle", muscle_table.nodes_key(str(error))), str(error)) from None
+    companions = _companions(table, skeleton, fail)
+    arm = Arm(muscle, skeleton, muscle_table.min_length, muscle_table.max_length,
+              muscle_table.name, companions)
     low, high = arm.length_range()
     if low > high:
         raise fail(
@@ -344,6 +400,57 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
         fail,
     )
     return arm.at_length(pose)
+
+
+def _companions(table: ConfigFile, skeleton: Skeleton,
+                fail: Callable[[tuple, str], ConfigError]) -> tuple[Companion, ...]:
+    """The ``[muscles.NAME]`` tables as companions at rest, checked to follow the elbow over
+    the joint's whole range."""
+    companions = []
+    for index, (name, companion_table) in enumerate(table.muscles.items()):
+        where = ("muscles", name)
+        if name == table.muscle.name:
+            raise fail(where, f"{name!r} is the [muscle]'s name already: give each muscle "
+                              "its own")
+        length = _length_of(companion_table.length, companion_table.flexion, "flexion",
+                            skeleton, lambda location, message: fail((*where, *location[1:]),
+                                                                     message))
+        path = companion_table.path()
+        if companion_table.flexion is not None:
+            length = path.length_at(companion_table.flexion)
+        radii, growth = companion_table.profile()
+        try:
+            muscle = Muscle.of(radii, growth, length, companion_table.volume)
+        except RefusedChange as error:
+            raise fail((*where, companion_table.nodes_key(str(error))), str(error)) from None
+        problem = _path_problem(path, skeleton)
+        if problem is not None:
+            raise fail((*where, problem[0]), problem[1])
+        colour = companion_table.colour or COMPANION_COLOURS[index % len(COMPANION_COLOURS)]
+        companion = Companion(name, muscle, path, colour)
+        problem = reach_problem(companion, skeleton.min_flexion, skeleton.max_flexion)
+        if problem is not None:
+            raise fail((*where, companion_table.nodes_key("growth")), problem)
+        companions.append(companion)
+    return tuple(companions)
+
+
+def _path_problem(path: MusclePath, skeleton: Skeleton) -> tuple[str, str] | None:
+    """The key to blame and why, if ``path``'s attachments cannot hold a muscle over the
+    joint's range (they meet, or sit inside the wrapping cylinder); None if they can."""
+    for flexion in (skeleton.min_flexion, skeleton.max_flexion):
+        start, end = path.ends(flexion)
+        if np.linalg.norm(end - start) < 0.5:
+            return "insertion", (f"origin and insertion come within 0.5 cm of each other at "
+                                 f"{flexion:g} degrees of flexion: a muscle needs room")
+    if path.wrap is not None:
+        for key, attachment in (("origin", path.origin), ("insertion", path.insertion)):
+            reach = float(np.hypot(*attachment.in_frame()[:2]))
+            if reach <= path.wrap.radius:
+                return key, (f"lies {reach:.2f} cm from the elbow's axis, inside the wrapping "
+                             f"cylinder of wrap_radius {path.wrap.radius:g} cm: it must lie "
+                             "outside it")
+    return None
 
 
 def _length_of(length: float | None, flexion: float | None, flexion_key: str,
@@ -416,12 +523,19 @@ def _unknown_key_message(location: tuple) -> str:
     *parents, key = location
     model: Any = ConfigFile
     for part in parents:
+        if isinstance(model, _NamedTables):  # part is the table's name
+            model = model.table
+            continue
         field = model.model_fields.get(part) if isinstance(part, str) else None
         annotation = getattr(field, "annotation", None)
-        model = annotation if isinstance(annotation, type) and issubclass(annotation, BaseModel) else None
-        if model is None:
+        if get_origin(annotation) is dict:  # [muscles.NAME]: any name, each one table
+            model = _NamedTables(get_args(annotation)[1])
+        elif isinstance(annotation, type) and issubclass(annotation, BaseModel):
+            model = annotation
+        else:
+            model = None
             break
-    allowed = list(model.model_fields) if model is not None else []
+    allowed = list(model.model_fields) if isinstance(model, type) else []
     message = f"unknown key {printable(repr(key))}"
     close = difflib.get_close_matches(str(key), allowed, n=1)
     if parents and key in ConfigFile.model_fields:
@@ -432,6 +546,13 @@ def _unknown_key_message(location: tuple) -> str:
     if allowed:
         message += f"; allowed here: {', '.join(allowed)}"
     return message
+
+
+@dataclass(frozen=True)
+class _NamedTables:
+    """A table of tables by any name (``[muscles.NAME]``), each a ``table``."""
+
+    table: type[BaseModel]
 
 
 def _located(path: Path, source: str, location: tuple, message: str) -> str:
@@ -545,6 +666,27 @@ def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm, before: Arm) -> None
     """
     muscle = arm.muscle
     table = document["muscle"]
+    _write_shape(table, muscle, before.muscle,
+                 lambda: arm.skeleton.flexion(muscle.reference_length))
+    for companion, earlier in zip(arm.companions, before.companions):
+        # A companion's shape is redefined where it is, so at the arm's flexion.
+        _write_shape(document["muscles"][companion.name], companion.muscle, earlier.muscle,
+                     lambda: arm.flexion)
+    if "pose_flexion" in table:
+        if muscle.length != before.length:
+            _update_value(table, "pose_flexion", arm.flexion)
+    elif "pose_length" in table:
+        _update_value(table, "pose_length", muscle.length)
+    elif muscle.length != muscle.reference_length:
+        pose = tomlkit.item(muscle.length)
+        pose.comment("cm as shown: the shape above, contracted or stretched at constant volume")
+        pose.trivia.comment_ws = "  "
+        table["pose_length"] = pose
+
+
+def _write_shape(table: Any, muscle: Muscle, before: Muscle, flexion: Callable[[], float]) -> None:
+    """A muscle's nodes, reference length (or the ``flexion()`` it is at, if the table gives
+    a flexion) and volume mode into its ``table``, where they differ from ``before``."""
     # Plain floats print their shortest exact form, so load -> save -> load is exact.
     radii = muscle.reference_radii.tolist()
     growth = muscle.growth.tolist()
@@ -553,22 +695,11 @@ def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm, before: Arm) -> None
     else:
         _update_list(table, "radius", radii)
         _update_list(table, "growth", growth)
-    reference = muscle.reference_length
-    if reference != before.muscle.reference_length:
+    if muscle.reference_length != before.reference_length:
         if "flexion" in table:
-            _update_value(table, "flexion", arm.skeleton.flexion(reference))
+            _update_value(table, "flexion", flexion())
         else:
-            _update_value(table, "length", reference)
-    if "pose_flexion" in table:
-        if muscle.length != before.length:
-            _update_value(table, "pose_flexion", arm.flexion)
-    elif "pose_length" in table:
-        _update_value(table, "pose_length", muscle.length)
-    elif muscle.length != reference:
-        pose = tomlkit.item(muscle.length)
-        pose.comment("cm as shown: the shape above, contracted or stretched at constant volume")
-        pose.trivia.comment_ws = "  "
-        table["pose_length"] = pose
+            _update_value(table, "length", muscle.reference_length)
     if table.get("volume", "closed") != muscle.volume_mode:
         table["volume"] = muscle.volume_mode
 

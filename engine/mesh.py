@@ -127,6 +127,39 @@ def muscle_mesh(
                      np.array([-1.0, 1.0]), axis)
 
 
+def bent_muscle_mesh(radii, points, axes, segments: int = DEFAULT_SEGMENTS) -> Mesh:
+    """A muscle along a bent path (round around a wrapping cylinder), closed by hemispheres.
+
+    radii: (n,) float64 node radii, all positive. points: (m, 3) float64 the centres of m
+    rings equally spaced along the path, the first on the origin and the last on the
+    insertion, m - 1 a multiple of n - 1 (as in `muscle_mesh`); axes: (m, 3) the path's
+    unit direction at each. Each ring lies across its own axis, so the solid is a tube
+    whose sections are centred on its path: its volume is the integral of their areas
+    along it (Pappus), the straight muscle's, while the bend is wider than the tube.
+    """
+    radii = _positive_radii(radii)
+    points, axes = np.asarray(points, dtype=np.float64), np.asarray(axes, dtype=np.float64)
+    _check_segments(segments)
+    along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+    r = np.interp(along, np.linspace(0.0, along[-1], len(radii)), radii)
+    slopes = np.gradient(r, along)
+    spokes = np.stack([_spokes(axis, segments) for axis in axes])  # (m, segments, 3)
+    vertices = points[:, None, :] + r[:, None, None] * spokes
+    normals = spokes - slopes[:, None, None] * axes[:, None, :]
+    normals /= np.linalg.norm(normals, axis=2, keepdims=True)
+    sin, cos = _quarter_circle(_cap_rings(segments, None))
+    first = _arc(0.0, r[0], -sin[:0:-1], cos[:0:-1])
+    last = _arc(0.0, r[-1], sin[1:], cos[1:])
+    before = _rings(first[1:], points[0], axes[0], segments)
+    after = _rings(last[:-1], points[-1], axes[-1], segments)
+    poles = np.array([points[0] + first[0, 0] * axes[0], points[-1] + last[-1, 0] * axes[-1]])
+    mesh = _assemble(poles, [before[0], vertices, after[0]], [before[1], normals, after[1]],
+                     np.array([-1.0, 1.0]), axes[0])
+    pole_normals = mesh.normals.copy()
+    pole_normals[-1] = axes[-1]  # the end pole faces along the path's last direction
+    return Mesh(mesh.vertices, pole_normals, mesh.triangles)
+
+
 def cylinder_mesh(
     start, end, radius: float, segments: int = DEFAULT_SEGMENTS, caps: str = "round"
 ) -> Mesh:

@@ -55,6 +55,7 @@ class Scene:
     view: View
     light: Light
     render: RenderSettings
+    hidden: frozenset[str] = frozenset()  # the names of the muscles not shown
 
     @classmethod
     def of(cls, config: Config) -> Scene:
@@ -72,18 +73,47 @@ class Scene:
     def with_arm(self, arm: Arm) -> Scene:
         return replace(self, arm=arm)
 
+    def with_hidden(self, name: str, hide: bool) -> Scene:
+        """The scene with muscle ``name`` hidden or shown."""
+        return replace(self, hidden=self.hidden | {name} if hide else self.hidden - {name})
 
-def scene_mesh(arm: Arm, render: RenderSettings) -> tuple[Mesh, np.ndarray]:
+
+def scene_mesh(arm: Arm, render: RenderSettings,
+               hidden: frozenset[str] = frozenset()) -> tuple[Mesh, np.ndarray]:
     """The arm as one world-space mesh, and its per-vertex albedo (n, 3) float32 in [0, 1]:
-    the bones in the bone colour, the muscle's belly in the muscle colour blending into the
-    tendon colour towards its ends."""
-    parts = arm_parts(arm, render.segments)
+    the bones in the bone colour, each muscle not ``hidden`` with its belly in its own
+    colour (or its strain's, see `strain_colour`) blending into the tendon colour towards
+    its ends."""
+    parts = arm_parts(arm, render.segments, hidden)
     bone = _unit_rgb(render.bone_colour)
-    albedo = [np.broadcast_to(bone, (len(part.vertices), 3)) for part in parts.values()]
-    tendon = tendon_share(arm, parts["muscle"])[:, None]
-    albedo[0] = (1.0 - tendon) * _unit_rgb(render.muscle_colour) + tendon * _unit_rgb(
-        render.tendon_colour)
-    return Mesh.concatenate(list(parts.values())), np.concatenate(albedo).astype(np.float32)
+    tendon_colour = _unit_rgb(render.tendon_colour)
+    colours = (render.muscle_colour, *(companion.colour for companion in arm.companions))
+    albedo = {name: np.broadcast_to(bone, (len(mesh.vertices), 3)) for name, mesh in parts.items()}
+    for name, muscle, path, colour in zip(arm.names, arm.muscles, arm.paths, colours):
+        if name in hidden:
+            continue
+        belly = (strain_colour(muscle.length / muscle.reference_length - 1.0)
+                 if render.colour_by == "strain" else _unit_rgb(colour))
+        tendon = tendon_share(muscle, path, arm.flexion, parts[name])[:, None]
+        albedo[name] = (1.0 - tendon) * belly + tendon * tendon_colour
+    return (Mesh.concatenate(list(parts.values())),
+            np.concatenate(list(albedo.values())).astype(np.float32))
+
+
+STRAIN_SPAN = 0.2
+"""The strain (length over rest length, less 1) at which the strain colour is at its
+warmest (shortened by this much) or coolest (lengthened by this much)."""
+_NEUTRAL = np.array([0.78, 0.72, 0.70], dtype=np.float32)
+_WARM = np.array([0.93, 0.33, 0.12], dtype=np.float32)  # shortened: orange-red
+_COOL = np.array([0.20, 0.45, 0.90], dtype=np.float32)  # lengthened: blue
+
+
+def strain_colour(strain: float) -> np.ndarray:
+    """(3,) float32 in [0, 1]: a muscle's colour ``strain`` from its rest length: neutral at
+    rest, warmer as it shortens, cooler as it lengthens (a diverging scale)."""
+    amount = min(abs(strain) / STRAIN_SPAN, 1.0)
+    end = _WARM if strain < 0 else _COOL
+    return (1.0 - amount) * _NEUTRAL + amount * end
 
 
 def _unit_rgb(colour: str) -> np.ndarray:
@@ -184,9 +214,9 @@ class SceneRenderer:
         # The arm compares its muscle by identity (a new muscle is a new object), and the
         # key holds the arm, so the identity cannot be reused by another.
         key = (scene.arm, render.segments, render.muscle_colour, render.tendon_colour,
-               render.bone_colour)
+               render.bone_colour, render.colour_by, scene.hidden)
         if key != self._mesh_key:
-            self._mesh = scene_mesh(scene.arm, render)
+            self._mesh = scene_mesh(scene.arm, render, scene.hidden)
             self._outline = outline(self._mesh[0].vertices)
             self._mesh_key = key
         return self._mesh

@@ -31,6 +31,9 @@ Graphics = Literal["halfblocks", "auto", "kitty", "sixel", "iterm"]
 every terminal shows; one of the protocols for real pixels; or ``auto``, the best the
 terminal answers that it has."""
 
+ColourBy = Literal["muscle", "strain"]
+"""What colours each muscle's belly: its own colour, or how far it is from its rest length."""
+
 COLOUR = "#[0-9a-fA-F]{6}"
 """A whole colour, ``#rrggbb``, as a regular expression."""
 
@@ -135,7 +138,9 @@ class RenderSettings:
     """How the picture is drawn: the vertices around each part's axis, the shading model,
     the supersampling factor (``ssaa`` x ``ssaa`` samples a pixel), the colours (the
     muscle's belly, its tendons, the bones, the background), and how the app sends it to
-    the terminal (``graphics``)."""
+    the terminal (``graphics``), and whether each muscle shows its own colour or its strain
+    (``colour_by``: "strain" is warm where a muscle is shorter than at rest, cool where
+    longer)."""
 
     segments: int = 48
     shading: str = "gouraud"
@@ -145,8 +150,10 @@ class RenderSettings:
     bone_colour: str = "#e3d9c0"
     background: str = "#12161c"
     graphics: str = "halfblocks"
+    colour_by: str = "muscle"
 
     def __post_init__(self) -> None:
         settle(self, "render", segments=integer(SEGMENTS), shading=one_of(SHADINGS),
                ssaa=integer(SUPERSAMPLING), muscle_colour=colour, tendon_colour=colour,
-               bone_colour=colour, background=colour, graphics=one_of(get_args(Graphics)))
+               bone_colour=colour, background=colour, graphics=one_of(get_args(Graphics)),
+               colour_by=one_of(get_args(ColourBy)))

@@ -105,7 +105,8 @@ def test_a_section_moves_forward_just_clear_of_a_bone_in_its_way():
 
 def test_tendons_are_the_nodes_that_do_not_grow(default_arm):
     parts = arm_parts(default_arm, SEGMENTS)
-    share = tendon_share(default_arm, parts["muscle"])
+    share = tendon_share(default_arm.muscle, default_arm.paths[0], default_arm.flexion,
+                         parts["muscle"])
     assert share[0] == share[-1] == 1.0  # the poles of the end caps
     assert share.min() == 0.0  # the belly
     growth = default_arm.muscle.growth
