@@ -82,12 +82,13 @@ def write_png(path: str | os.PathLike, frame: np.ndarray) -> None:
 def write_mesh(path: str | os.PathLike, arm: Arm, segments: int,
                muscle_colour: str = RenderSettings.muscle_colour,
                bone_colour: str = RenderSettings.bone_colour) -> None:
-    """Write the arm in its current pose as named parts (``anatomy.PARTS``: the muscle and
-    each bone).
+    """Write the arm in its current pose as named parts (``anatomy.arm_parts``: each muscle
+    by its name, and each bone).
 
     World space, centimetres; the format follows the suffix (OBJ, STL, PLY or binary glTF).
     STL and PLY hold a single mesh, so there the parts are merged. In glTF each part has
-    its material, in the muscle's or the bones' colour (``#rrggbb``); OBJ keeps its
+    its material, in its muscle's colour (the driver's is ``muscle_colour``, each
+    companion's its own) or the bones' (``#rrggbb``); OBJ keeps its
     materials in a second file, so it has none here.
     """
     import trimesh  # heavy, and only this command needs it
@@ -98,11 +99,12 @@ def write_mesh(path: str | os.PathLike, arm: Arm, segments: int,
     check_writable(path, *MESH_FORMATS)
     file_type = path.suffix.lower().lstrip(".")
     scene = trimesh.Scene()
+    colours = dict(zip(arm.names, (muscle_colour, *(c.colour for c in arm.companions))))
     for name, mesh in arm_parts(arm, segments).items():
         geometry = trimesh.Trimesh(mesh.vertices, mesh.triangles, vertex_normals=mesh.normals,
                                    process=False)
         if file_type == "glb":
-            colour = rgb(muscle_colour if name == "muscle" else bone_colour)
+            colour = rgb(colours.get(name, bone_colour))
             # Matte and not metallic: how the app shades them.
             geometry.visual = TextureVisuals(material=PBRMaterial(
                 name=name, baseColorFactor=[*colour, 255], metallicFactor=0.0,

@@ -6,7 +6,6 @@ library independent of ours, as the issue asks.
 
 import math
 
-import manifold3d
 import numpy as np
 import pytest
 import trimesh
@@ -17,6 +16,7 @@ from biceps.engine.clearance import GAP, section_offsets
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.export import write_mesh
 from biceps.engine.skeleton import Skeleton
+from solids import solid
 
 FLEXIONS = range(0, 131, 10)
 SEGMENTS = 48
@@ -25,15 +25,6 @@ SEGMENTS = 48
 @pytest.fixture(scope="module")
 def default_arm():
     return load_config(DEFAULT_CONFIG).arm
-
-
-def solid(mesh: trimesh.Trimesh) -> manifold3d.Manifold:
-    """The closed parts of ``mesh`` joined into one solid (a bone's parts overlap)."""
-    whole = manifold3d.Manifold(manifold3d.Mesh(
-        vert_properties=np.asarray(mesh.vertices, np.float32),
-        tri_verts=np.asarray(mesh.faces, np.uint32)))
-    assert whole.status() == manifold3d.Error.NoError
-    return manifold3d.Manifold.batch_boolean(whole.decompose(), manifold3d.OpType.Add)
 
 
 @pytest.fixture(scope="module")
