@@ -56,6 +56,7 @@ class Scene:
     light: Light
     render: RenderSettings
     hidden: frozenset[str] = frozenset()  # the names of the muscles not shown
+    selected: int = 0  # which of the arm's muscles the node table edits (0: the driver)
 
     @classmethod
     def of(cls, config: Config) -> Scene:
@@ -72,6 +73,10 @@ class Scene:
 
     def with_arm(self, arm: Arm) -> Scene:
         return replace(self, arm=arm)
+
+    def with_next_muscle(self, step: int = 1) -> Scene:
+        """The scene with the next muscle (or ``step`` on) selected for editing."""
+        return replace(self, selected=(self.selected + step) % len(self.arm.names))
 
     def with_hidden(self, name: str, hide: bool) -> Scene:
         """The scene with muscle ``name`` hidden or shown."""

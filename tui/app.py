@@ -122,6 +122,10 @@ class BicepsApp(App[None]):
         Binding("k", f"move_light(0, {-LIGHT_STEP}, 0)", "Light down", show=False),
         Binding("u", f"move_light(0, 0, {LIGHT_STEP})", "Light towards you", show=False),
         Binding("o", f"move_light(0, 0, {-LIGHT_STEP})", "Light away from you", show=False),
+        Binding("t", "next_muscle(1)", "Next muscle", show=False),
+        Binding("T", "next_muscle(-1)", "Previous muscle", show=False),
+        Binding("y", "hide_muscle", "Hide or show the muscle", show=False),
+        Binding("b", "switch_colours", "Colours: each muscle's own or its strain", show=False),
         Binding("r", "reset_view", "Reset the view", show=False),
         Binding("g", "switch_shading", "Shading: Gouraud or Phong", show=False),
         Binding("m", "switch_antialiasing", "Anti-aliasing on or off", show=False),
@@ -343,6 +347,29 @@ class BicepsApp(App[None]):
     def action_switch_shading(self) -> None:
         self._change(with_shading_switched)
 
+    def action_next_muscle(self, step: int) -> None:
+        self._change(lambda scene: scene.with_next_muscle(step))
+        names = self.scene.arm.names
+        if len(names) > 1:
+            self.notify(f"Editing {names[self.scene.selected]} "
+                        f"({self.scene.selected + 1} of {len(names)})", markup=False)
+        else:
+            self.notify(f"{names[0]} is the only muscle", markup=False)
+
+    def action_hide_muscle(self) -> None:
+        scene = self.scene
+        name = scene.arm.names[scene.selected]
+        hide = name not in scene.hidden
+        self._change(lambda scene: scene.with_hidden(name, hide))
+        self.notify(f"{name} {'hidden' if hide else 'shown'}; y shows it again" if hide
+                    else f"{name} shown", markup=False)
+
+    def action_switch_colours(self) -> None:
+        strain = self.scene.render.colour_by != "strain"
+        self._change(lambda scene: scene.with_render(colour_by="strain" if strain else "muscle"))
+        self.notify("Colours: strain, warm where a muscle is shorter than at rest, cool where "
+                    "longer" if strain else "Colours: each muscle's own", markup=False)
+
     def action_switch_antialiasing(self) -> None:
         self._change(with_antialiasing_switched)
 
@@ -360,15 +387,15 @@ class BicepsApp(App[None]):
 
     @on(NodeTable.ChangeRequested)
     def _edit_muscle(self, message: NodeTable.ChangeRequested) -> None:
-        arm = self.scene.arm
+        arm, index = self.scene.arm, self.scene.selected
         try:
-            edited = arm.with_muscle(message.change(arm.muscle))
+            edited = arm.with_muscle_at(index, message.change(arm.muscles[index]))
         except BicepsError as error:
             self._refuse(str(error))
             return
-        self._edit(edited, message.what)
-        count = edited.muscle.node_count
-        if count > SLOW_NODES >= arm.muscle.node_count:
+        self._edit(edited, message.what if index == 0 else f"{message.what} of {arm.names[index]}")
+        count = edited.muscles[index].node_count
+        if count > SLOW_NODES >= arm.muscles[index].node_count:
             self.notify(
                 f"{count:,} nodes: the picture will follow each change slowly, a mesh of "
                 f"{count:,} rings; the numbers and the table stay quick. ctrl+z undoes it.",

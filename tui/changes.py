@@ -127,12 +127,16 @@ def has_unsaved_edits(scene: Scene, saved: Scene) -> bool:
 
 
 def _same_arm(a: Arm, b: Arm) -> bool:
+    return ((a.skeleton, a.min_length, a.max_length, a.names)
+            == (b.skeleton, b.min_length, b.max_length, b.names)
+            and all(map(_same_muscle, a.muscles, b.muscles)))
+
+
+def _same_muscle(first: Muscle, second: Muscle) -> bool:
     # By value, to a rounding error: contracting and stretching back makes a new muscle whose
     # radii, solved again from the rest shape, may differ from it in the last bit.
-    first, second = a.muscle, b.muscle
     return (
-        (a.skeleton, a.min_length, a.max_length) == (b.skeleton, b.min_length, b.max_length)
-        and first.volume_mode == second.volume_mode
+        first.volume_mode == second.volume_mode
         and first.node_count == second.node_count
         and np.isclose(first.length, second.length, rtol=_ROUNDING, atol=0.0)
         and np.isclose(first.reference_length, second.reference_length, rtol=_ROUNDING,

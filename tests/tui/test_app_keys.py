@@ -59,6 +59,7 @@ def test_every_key_of_the_main_screen_is_tested():
         "ctrl+z", "ctrl+y", "ctrl+r",  # tests/tui/test_app_history.py
     }  # fmt: skip
     tested |= {"p", "v"}  # test_app_plots.py, test_app_record.py
+    tested |= {"t", "T", "y", "b"}  # test_app_muscles.py
     bound = {key for binding in BicepsApp.BINDINGS for key in binding.key.split(",")}
     assert bound <= tested
 

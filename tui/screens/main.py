@@ -44,7 +44,7 @@ class MainScreen(Screen[None]):
         super().__init__()
         self._pacer = pacer
         self._encoder = encoder
-        self._arm: Arm | None = None
+        self._arm: tuple[Arm, int] | None = None  # the arm and the muscle shown
         # Real pixels are painted over the cells: notifications keep to the side panel.
         self.set_class(isinstance(encoder, ImageEncoder), "-pixels")
         self._panel_wanted: bool | None = None  # None: as the width has it
@@ -126,17 +126,17 @@ class MainScreen(Screen[None]):
         # Turning, moving and lighting leave the numbers be. A burst of edits (a held key,
         # keys queued while the app was busy) shows its numbers once, after the burst: the
         # screen refreshes only once the keys waiting have been handled.
-        if scene.arm != self._arm and not self._numbers_due:
+        if (scene.arm, scene.selected) != self._arm and not self._numbers_due:
             self._numbers_due = True
             self.app.call_later(self._show_numbers)
 
     def _show_numbers(self) -> None:
         self._numbers_due = False
-        arm = self.app.scene.arm
-        if arm != self._arm:
-            self._arm = arm
-            self.query_one(Stats).show(arm)
-            self.query_one(NodeTable).show(arm.muscle)
+        arm, selected = self.app.scene.arm, self.app.scene.selected
+        if (arm, selected) != self._arm:
+            self._arm = (arm, selected)
+            self.query_one(Stats).show(arm, selected)
+            self.query_one(NodeTable).show(arm.muscles[selected])
             self.query_one(Plots).show(arm)
 
     def _show_file(self) -> None:

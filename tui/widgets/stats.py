@@ -10,28 +10,40 @@ from biceps.engine.arm import Arm
 
 
 class Stats(Static):
-    _shown = False
+    _rows = 0  # the rows shown last
 
-    def show(self, arm: Arm) -> None:
-        muscle = arm.muscle
+    def show(self, arm: Arm, selected: int = 0) -> None:
+        """The numbers of ``arm``'s muscle ``selected`` (0: the driver), and with several
+        muscles a line for each: its length, volume and how closely that is kept."""
+        muscle = arm.muscles[selected]
         shortest, longest = arm.length_range()
         table = Table.grid(padding=(0, 1))
         table.add_column(style="dim", no_wrap=True)
         table.add_column(no_wrap=True)
+        if len(arm.names) > 1:
+            table.add_row("muscle", arm.names[selected])
         table.add_row("length", f"{_number(muscle.length, 2)} cm")
-        table.add_row("  range", f"{_number(shortest, 2)} to {_number(longest, 2)}")
+        if selected == 0:
+            table.add_row("  range", f"{_number(shortest, 2)} to {_number(longest, 2)}")
         table.add_row("flexion", f"{arm.flexion:.1f}°")
-        table.add_row("moment arm", f"{_number(arm.moment_arm, 2)} cm")
+        if selected == 0:
+            table.add_row("moment arm", f"{_number(arm.moment_arm, 2)} cm")
         table.add_row("volume", f"{_number(muscle.volume, 3)} cm³")
         table.add_row("  with", "both end caps" if muscle.volume_mode == "closed"
                       else "no end caps")
         table.add_row("  kept to", _kept(muscle.volume_error))
         table.add_row("max radius", f"{_number(muscle.max_radius, 3)} cm")
         table.add_row("girth", f"{_number(muscle.girth, 2)} cm")
-        # Always the same rows in a panel of fixed width: once laid out, a new muscle
-        # needs a repaint, not a layout of the whole screen (at every step of a held key).
-        self.update(table, layout=not self._shown)
-        self._shown = True
+        if len(arm.names) > 1:
+            table.add_row("", "")
+            for name, each in zip(arm.names, arm.muscles):
+                table.add_row(name, f"{_number(each.length, 2)} cm {_number(each.volume, 1)} cm³ "
+                                    f"{_error(each.volume_error)}")
+        # The same rows in a panel of fixed width: once laid out, a new muscle needs a
+        # repaint, not a layout of the whole screen (at every step of a held key); only
+        # another muscle picked, with other rows, needs a layout.
+        self.update(table, layout=table.row_count != self._rows)
+        self._rows = table.row_count
 
 
 def _number(value: float, decimals: int) -> str:
@@ -41,6 +53,11 @@ def _number(value: float, decimals: int) -> str:
     if value == 0 or 10.0 ** -decimals <= abs(value) < 1e5:
         return f"{value:.{decimals}f}"
     return f"{value:.4g}"
+
+
+def _error(error: float) -> str:
+    """The relative volume error, short: ``0`` or ``2e-16``."""
+    return "0" if error == 0 else f"{error:.0e}"
 
 
 def _kept(error: float) -> str:

@@ -1,0 +1,112 @@
+"""Several muscles in the app: picking one for the node table, hiding one, colouring by
+strain, and edits of any of them undone and saved."""
+
+import re
+import shutil
+
+import numpy as np
+import pytest
+
+from biceps.configs import FOLDER
+from biceps.engine.config import load_config
+from biceps.tui.widgets.node_table import NodeTable
+from biceps.tui.widgets.stats import Stats
+
+from test_app_nodes import _edit, _text
+
+
+@pytest.fixture
+def elbow(tmp_path):
+    path = tmp_path / "elbow.toml"
+    shutil.copy(FOLDER / "elbow.toml", path)
+    return load_config(path)
+
+
+async def test_t_picks_each_muscle_in_turn_for_the_node_table_and_T_goes_back(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        names = app.scene.arm.names
+        await pilot.press("t", "t")
+        await session.settle()
+        assert app.scene.selected == 2
+        table = app.screen.query_one(NodeTable)
+        assert table.row_count == app.scene.arm.muscles[2].node_count
+        assert re.search(rf"muscle +{names[2]}", _text(app.screen.query_one(Stats).content))
+        await pilot.press(*"t" * (len(names) - 2))
+        assert app.scene.selected == 0
+        await pilot.press("T")
+        assert app.scene.selected == len(names) - 1
+        assert not app.unsaved  # picking a muscle is no edit
+
+
+async def test_one_muscle_is_the_only_one_to_pick(biceps):
+    async with biceps() as session:
+        await session.pilot.press("t")
+        assert session.app.scene.selected == 0
+        assert any("only muscle" in note.message for note in session.notes)
+
+
+async def test_a_node_edit_changes_the_picked_muscle_alone_and_undo_takes_it_back(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        before = app.scene.arm
+        await pilot.press("t", "t")  # the brachialis
+        await _edit(session, 5, radius="2.6")
+        after = app.scene.arm
+        assert after.muscles[2].radii[4] == 2.6
+        assert after.muscles[2].volume_error == 0.0
+        for index in (0, 1, 3, 4, 5):
+            assert after.muscles[index] is before.muscles[index]
+        assert app.unsaved
+        await pilot.press("ctrl+z")
+        assert app.scene.arm.muscles[2].radii[4] == before.muscles[2].radii[4]
+        assert not app.unsaved
+        await pilot.press("ctrl+y")
+        assert app.scene.arm.muscles[2].radii[4] == 2.6
+
+
+async def test_an_edited_companion_is_saved_and_loads_again(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        await pilot.press("t", "t", "C", "C")  # the brachialis; then the elbow bends
+        await _edit(session, 5, radius="2.6")
+        edited = app.scene.arm
+        await pilot.press("ctrl+s")
+        await session.settle()
+        again = load_config(elbow.path).arm
+        assert np.allclose(again.muscles[2].radii, edited.muscles[2].radii, rtol=1e-12)
+        assert again.muscles[2].reference_volume == pytest.approx(
+            edited.muscles[2].reference_volume, rel=1e-12)
+
+
+async def test_contracting_the_biceps_lengthens_the_triceps_each_at_its_own_volume(biceps,
+                                                                                    elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        before = session.app.scene.arm
+        await session.pilot.press("C", "C", "C")
+        after = session.app.scene.arm
+        assert after.flexion > before.flexion
+        for name, old, new in zip(after.names, before.muscles, after.muscles):
+            assert (new.length > old.length) == name.startswith("triceps")
+            assert new.volume_error < 1e-12
+
+
+async def test_y_hides_the_picked_muscle_and_shows_it_again(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        await pilot.press("t", "y")
+        assert app.scene.hidden == {"biceps_short"}
+        await session.settle()
+        await pilot.press("y")
+        assert app.scene.hidden == frozenset()
+        await session.settle()
+        assert session.warnings == []
+
+
+async def test_b_colours_the_muscles_by_strain(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        await session.pilot.press("b")
+        assert session.app.scene.render.colour_by == "strain"
+        await session.settle()
+        await session.pilot.press("b")
+        assert session.app.scene.render.colour_by == "muscle"
