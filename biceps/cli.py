@@ -216,7 +216,8 @@ def doctor(graphics: str) -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print JSON for scripts.")
 @_refusals_exit_2
 def info(config: Path, length: float | None, flexion: float | None, as_json: bool) -> None:
-    """Length, flexion, volume and radii of the muscle in CONFIG."""
+    """Length, flexion, volume and radii of the muscle in CONFIG, and of every other muscle
+    there."""
     from biceps.engine.config import load_config
 
     arm = posed(load_config(config).arm, length, flexion)
@@ -238,6 +239,15 @@ def info(config: Path, length: float | None, flexion: float | None, as_json: boo
         f"  nodes          {facts['nodes']}\n"
         f"  radii (cm)     {radii}"
     )
+    others = facts["muscles"][1:]
+    if others:
+        width = max(len(each["name"]) for each in facts["muscles"])
+        click.echo(f"  muscles        length, volume (relative error), largest radius; the first "
+                   f"drives the elbow")
+        for each in facts["muscles"]:
+            click.echo(f"    {each['name']:<{width}}  {each['length_cm']:7.3f} cm "
+                       f"{each['volume_cm3']:9.4f} cm^3 ({each['volume_relative_error']:.1e}) "
+                       f"{each['max_radius_cm']:.3f} cm")
 
 
 @main.command(short_help="One row per elbow angle: length, moment arm, girth, radii.")
@@ -299,6 +309,22 @@ def describe(arm: Arm) -> dict[str, Any]:
         "nodes": muscle.node_count,
         "radii_cm": muscle.radii.tolist(),
         "growth": muscle.growth.tolist(),
+        "muscles": [_muscle_facts(name, each) for name, each in zip(arm.names, arm.muscles)],
+    }
+
+
+def _muscle_facts(name: str, muscle: Any) -> dict[str, Any]:
+    """One muscle's facts, for ``info``'s list of every muscle (the driver first)."""
+    return {
+        "name": name,
+        "length_cm": muscle.length,
+        "rest_length_cm": muscle.reference_length,
+        "volume_mode": muscle.volume_mode,
+        "volume_cm3": muscle.volume,
+        "reference_volume_cm3": muscle.reference_volume,
+        "volume_relative_error": muscle.volume_error,
+        "max_radius_cm": muscle.max_radius,
+        "nodes": muscle.node_count,
     }
 
 

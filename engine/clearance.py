@@ -71,8 +71,13 @@ def path_offsets(points, axes, radii, centres, sphere_radii) -> np.ndarray:
     """The sideways moves (m, 3) of m sections centred at ``points`` (m, 3), equally spaced
     along a path (straight, or bent round the elbow), each in the plane across its unit
     ``axes`` (m, 3), that keep the muscle of node ``radii`` (n,) clear of the spheres; m - 1
-    is a multiple of n - 1. On a straight stretch the planes are parallel, so its volume
-    does not change (Cavalieri)."""
+    is a multiple of n - 1.
+
+    Only sections on a straight stretch move: there the planes are parallel, so the volume
+    does not change (Cavalieri). Where the path bends, moving a section away from the bend
+    would lengthen the tube and grow its volume (Pappus), so the sections whose plane is
+    not parallel to a neighbour's stay, and the moves ease off towards them at ``SLOPE``.
+    """
     steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
     along = np.concatenate([[0.0], np.cumsum(steps)])
     length = along[-1]
@@ -88,7 +93,21 @@ def path_offsets(points, axes, radii, centres, sphere_radii) -> np.ndarray:
     falling = (np.maximum.accumulate((shift - SLOPE * along)[::-1]) + SLOPE * along[::-1])[::-1]
     smooth = np.maximum(rising, falling)
     smooth[[0, -1]] = 0.0  # the attachments themselves stay on the bone
+    bent = np.flatnonzero(_bends(axes))
+    if bent.size:
+        nearest = np.min(np.abs(along[:, None] - along[bent][None, :]), axis=1)
+        smooth = np.minimum(smooth, SLOPE * nearest)
     return smooth[:, None] * side
+
+
+def _bends(axes: np.ndarray) -> np.ndarray:
+    """(m,) bool: the sections whose unit axis (of ``axes`` (m, 3)) is not that of a
+    neighbour, to a rounding error."""
+    turns = ~np.all(np.isclose(axes[1:], axes[:-1], rtol=0.0, atol=1e-12), axis=1)
+    bends = np.zeros(len(axes), dtype=bool)
+    bends[1:] |= turns
+    bends[:-1] |= turns
+    return bends
 
 
 def sections_per_segment(nodes: int) -> int:

@@ -140,8 +140,9 @@ def bent_muscle_mesh(radii, points, axes, segments: int = DEFAULT_SEGMENTS) -> M
     radii = _positive_radii(radii)
     points, axes = np.asarray(points, dtype=np.float64), np.asarray(axes, dtype=np.float64)
     _check_segments(segments)
+    # The rings take the radii of equal steps along the profile, wherever they were moved.
+    r = np.interp(np.linspace(0.0, 1.0, len(points)), np.linspace(0.0, 1.0, len(radii)), radii)
     along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
-    r = np.interp(along, np.linspace(0.0, along[-1], len(radii)), radii)
     slopes = np.gradient(r, along)
     spokes = np.stack([_spokes(axis, segments) for axis in axes])  # (m, segments, 3)
     vertices = points[:, None, :] + r[:, None, None] * spokes
