@@ -3,6 +3,7 @@ latency, CPU, and the lag left behind on slow links, beside rich-pixels in a ``S
 
     .venv/bin/python benchmarks/tui_pty.py [--sizes 200x60,400x100] [--seconds 4]
                                            [--links 5,20] [--link-size 200x60] [--quick]
+                                           [--config configs/elbow.toml]
 
 Each app runs in a pseudo-terminal of the given size, with TERM=xterm-256color and
 COLORTERM=truecolor. This script plays the terminal: it answers the synchronized-output
@@ -314,15 +315,16 @@ def started(argv: list[str], columns: int, rows: int, start=Terminal.start) -> T
 # The apps
 
 
-def biceps_argv() -> list[str]:
-    return [sys.executable, "-m", "biceps.cli", "app", str(CONFIG)]
+def biceps_argv(config: Path) -> list[str]:
+    return [sys.executable, "-m", "biceps.cli", "app", str(config)]
 
 
-def baseline_argv() -> list[str]:
-    return [sys.executable, str(Path(__file__).resolve()), "--rich-pixels-app"]
+def baseline_argv(config: Path) -> list[str]:
+    return [sys.executable, str(Path(__file__).resolve()), "--rich-pixels-app",
+            "--config", str(config)]
 
 
-def run_rich_pixels_app() -> None:
+def run_rich_pixels_app(config: Path) -> None:
     """The baseline: each key re-renders the scene and shows it with rich-pixels in a Static."""
     from PIL import Image
     from rich.console import Group
@@ -341,7 +343,7 @@ def run_rich_pixels_app() -> None:
 
         def __init__(self) -> None:
             super().__init__()
-            self.scene = Scene.of(load_config(CONFIG))
+            self.scene = Scene.of(load_config(config))
             self.renderer = SceneRenderer()
 
         def compose(self) -> ComposeResult:
@@ -407,18 +409,21 @@ def main() -> None:
     parser.add_argument("--no-baseline", action="store_true", help="measure biceps only")
     parser.add_argument("--quick", action="store_true",
                         help="200x60 only, 2 s phases, 5 Mbit/s only")
+    parser.add_argument("--config", type=Path, default=CONFIG,
+                        help="the model both apps show (default configs/biceps.toml)")
     parser.add_argument("--rich-pixels-app", action="store_true", help=argparse.SUPPRESS)
     arguments = parser.parse_args()
     if arguments.rich_pixels_app:
-        run_rich_pixels_app()
+        run_rich_pixels_app(arguments.config)
         return
     if arguments.quick:
         arguments.sizes, arguments.seconds, arguments.links = "200x60", 2.0, "5"
     sizes = [tuple(map(int, size.split("x"))) for size in arguments.sizes.split(",")]
     link_size = tuple(map(int, arguments.link_size.split("x")))
-    apps = [("biceps", biceps_argv())]
+    apps = [("biceps", biceps_argv(arguments.config))]
     if not arguments.no_baseline:
-        apps.append(("rich-pixels", baseline_argv()))
+        apps.append(("rich-pixels", baseline_argv(arguments.config)))
+    print(f"model: {arguments.config}")
 
     print(f"{'':<12} {'':<12} {'fps at keys/s':>15} {'':>9} {'key to picture':>17}")
     print(f"{'app':<12} {'size':<12} {'30':>7} {'120':>7} {'KB/frame':>9} {'median':>8} "
