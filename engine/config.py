@@ -381,6 +381,9 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
     except RefusedChange as error:
         raise fail(("muscle", muscle_table.nodes_key(str(error))), str(error)) from None
     companions = _companions(table, skeleton, fail)
+    # The companions follow the elbow from the start: each at its path's length there.
+    companions = tuple(companion.at_flexion(skeleton.flexion(length))
+                       for companion in companions)
     arm = Arm(muscle, skeleton, muscle_table.min_length, muscle_table.max_length,
               muscle_table.name, companions)
     low, high = arm.length_range()
@@ -509,7 +512,10 @@ def _problem(within: tuple, problem: dict) -> str:
         return f"the [{location[0]}] table is required, but missing"
     if kind == "missing":
         return "required, but missing"
-    if kind == "string_pattern_mismatch":  # the only patterns are colours
+    if kind == "string_pattern_mismatch" and location[-1] == "[key]":  # a muscle's name
+        return (f"a muscle's name is 1 to 40 letters, digits, '_' or '-' "
+                f"(found {printable(quoted(found))})")
+    if kind == "string_pattern_mismatch":  # the other patterns are colours
         return f"should be a colour written #rrggbb (found {printable(quoted(found))})"
     message = problem["msg"].removeprefix("Value error, ")
     if kind == "value_error":
@@ -556,6 +562,8 @@ class _NamedTables:
 
 
 def _located(path: Path, source: str, location: tuple, message: str) -> str:
+    # pydantic marks a problem with a table's name (a key of [muscles]) as its "[key]".
+    location = tuple(part for part in location if part != "[key]")
     dotted = ".".join(printable(str(part)) for part in location if isinstance(part, str))
     for part in location:
         if isinstance(part, int):

@@ -25,6 +25,19 @@ INVALID_CASES = {
     "bad_graphics.toml": (":6: render.graphics: Input should be 'halfblocks', 'auto', 'kitty',"
                           " 'sixel' or 'iterm' (found 'png')"),
     "bad_shading.toml": ":6: render.shading: Input should be 'gouraud' or 'phong' (found 'flat')",
+    "companion_bad_name.toml": ("muscles.long head: a muscle's name is 1 to 40 letters, digits, "
+                                "'_' or '-' (found 'long head')"),
+    "companion_inside_wrap.toml": (":9: muscles.brachialis.insertion: lies 1.05 cm from the "
+                                   "elbow's axis, inside the wrapping cylinder"),
+    "companion_no_growth.toml": ":7: muscles.brachialis.nodes: at least one node needs a growth",
+    "companion_same_name.toml": ":5: muscles.muscle: 'muscle' is the [muscle]'s name already",
+    "companion_short_origin.toml": ":8: muscles.brachialis.origin[2]: required, but missing",
+    "companion_too_thin.toml": (":7: muscles.brachialis.nodes: brachialis would have to stretch "
+                                "to"),
+    "companion_unknown_key.toml": (":10: muscles.brachialis.warp: unknown key 'warp' (did you "
+                                   "mean 'wrap'?); allowed here: volume, length, flexion, nodes, "
+                                   "radius, growth, origin, insertion, wrap, wrap_radius, colour"),
+    "companion_wrap_without_radius.toml": ":5: muscles.brachialis: wrap and wrap_radius go together",
     "binary_junk.toml": "not a text file (byte 0 is not UTF-8); a configuration is a TOML text",
     "boolean_scale.toml": ":6: view.scale: must be a finite number from 0.01 to 100 (found True)",
     "broken_toml.toml": "not valid TOML",

@@ -144,3 +144,16 @@ def test_every_muscles_mesh_holds_its_volume_wrapped_or_straight(elbow, flexion)
         tolerance = 1e-3 if path.wraps(flexion) else 3e-4
         assert mesh.volume == pytest.approx(polygon * muscle.volume, rel=tolerance), name
     assert any(path.wraps(flexion) for path in arm.paths) == (flexion <= 40 or flexion >= 70)
+
+
+def test_a_companion_follows_the_elbow_from_the_file_on(tmp_path):
+    # Its nodes are its shape at 5 cm; loaded, it is where the elbow puts it.
+    path = tmp_path / "two.toml"
+    path.write_text("[muscle]\nlength = 33.0\nnodes = [[0.35, 0.0], [2.0, 2.0], [0.35, 0.0]]\n\n"
+                    "[muscles.x]\nlength = 5.0\nnodes = [[0.5, 0.0], [0.6, 0.5], [0.5, 0.0]]\n"
+                    "origin = [15.0, 0.5, 0.0]\ninsertion = [3.0, 0.5, 0.0]\n")
+    arm = load_config(path).arm
+    companion = arm.companions[0]
+    assert companion.muscle.reference_length == 5.0
+    assert companion.muscle.length == pytest.approx(companion.path.length_at(arm.flexion))
+    assert companion.muscle.volume == pytest.approx(companion.muscle.reference_volume, rel=1e-12)
