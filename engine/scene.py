@@ -74,9 +74,9 @@ class Scene:
     def with_arm(self, arm: Arm) -> Scene:
         return replace(self, arm=arm)
 
-    def with_next_muscle(self, step: int = 1) -> Scene:
-        """The scene with the next muscle (or ``step`` on) selected for editing."""
-        return replace(self, selected=(self.selected + step) % len(self.arm.names))
+    def with_selected(self, index: int) -> Scene:
+        """The scene with muscle ``index`` of the arm's (counted round) picked for editing."""
+        return replace(self, selected=index % len(self.arm.names))
 
     def with_hidden(self, name: str, hide: bool) -> Scene:
         """The scene with muscle ``name`` hidden or shown."""

@@ -348,7 +348,10 @@ class BicepsApp(App[None]):
         self._change(with_shading_switched)
 
     def action_next_muscle(self, step: int) -> None:
-        self._change(lambda scene: scene.with_next_muscle(step))
+        self.action_select_muscle(self.scene.selected + step)
+
+    def action_select_muscle(self, index: int) -> None:
+        self._change(lambda scene: scene.with_selected(index))
         names = self.scene.arm.names
         if len(names) > 1:
             self.notify(f"Editing {names[self.scene.selected]} "

@@ -1,4 +1,5 @@
-"""The command palette offers every key's action, found by its description.
+"""The command palette offers every key's action, found by its description, and with
+several muscles each muscle to pick for the node table.
 
 The commands are read from the bindings themselves, so a new key is in the palette the
 moment it is bound, with the key shown beside it.
@@ -31,13 +32,20 @@ class KeyCommands(Provider):
                 run = partial(app.run_action, action, owner)
                 yield descriptions[action], ", ".join(shown), run
 
+    def _muscles(self) -> Iterator[tuple[str, str, partial]]:
+        names = self.app.scene.arm.names
+        if len(names) > 1:
+            for index, name in enumerate(names):
+                yield (f"Edit muscle {name}", "the driver" if index == 0 else "t cycles",
+                       partial(self.app.run_action, f"select_muscle({index})"))
+
     async def discover(self) -> Hits:
-        for name, keys, run in self._commands():
+        for name, keys, run in (*self._commands(), *self._muscles()):
             yield DiscoveryHit(name, run, help=keys)
 
     async def search(self, query: str) -> Hits:
         matcher = self.matcher(query)
-        for name, keys, run in self._commands():
+        for name, keys, run in (*self._commands(), *self._muscles()):
             score = matcher.match(name)
             if score > 0:
                 yield Hit(score, matcher.highlight(name), run, help=keys)

@@ -6,9 +6,11 @@ import shutil
 
 import numpy as np
 import pytest
+from textual.command import CommandList
 
 from biceps.configs import FOLDER
 from biceps.engine.config import load_config
+from biceps.tui.commands import KeyCommands
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.stats import Stats
 
@@ -110,3 +112,26 @@ async def test_b_colours_the_muscles_by_strain(biceps, elbow):
         await session.settle()
         await session.pilot.press("b")
         assert session.app.scene.render.colour_by == "muscle"
+
+
+async def test_the_palette_lists_every_muscle_and_picks_one(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        provider = KeyCommands(session.app.screen)
+        offered = {hit.text async for hit in provider.discover()}
+        names = session.app.scene.arm.names
+        assert {f"Edit muscle {name}" for name in names} <= offered
+        await session.pilot.press("ctrl+p", *"edit muscle triceps_lateral")
+        commands = session.app.screen.query_one(CommandList)
+        for _ in range(1000):  # the palette searches in the background
+            if commands.option_count:
+                break
+            await session.pilot.pause(0.01)
+        await session.pilot.press("enter")
+        await session.settle()
+        assert session.app.scene.selected == names.index("triceps_lateral")
+
+
+async def test_the_palette_lists_no_muscles_for_one(biceps):
+    async with biceps() as session:
+        offered = {hit.text async for hit in KeyCommands(session.app.screen).discover()}
+        assert not any(text.startswith("Edit muscle") for text in offered)
