@@ -26,10 +26,8 @@ MODEL = ROOT.parent / "shared" / "data" / "arm26.osim"
 OUTPUT = ROOT / "tests" / "engine" / "data" / "arm26_biclong.json"
 ELBOW_OUTPUT = ROOT / "tests" / "engine" / "data" / "arm26_elbow.json"
 FLEXIONS = list(range(0, 131, 10))
-ARM26_MUSCLES = {"BIClong": "biceps_long", "BICshort": "biceps_short", "BRA": "brachialis",
-                 "TRIlong": "triceps_long", "TRIlat": "triceps_lateral",
-                 "TRImed": "triceps_medial"}
-"""arm26's six muscles, and their names in configs/elbow.toml."""
+ARM26_MUSCLES = ("BIClong", "BICshort", "BRA", "TRIlong", "TRIlat", "TRImed")
+"""arm26's six muscles, named so in configs/elbow.toml too."""
 
 
 def opensim_curve(model_path: Path) -> dict:
@@ -78,7 +76,7 @@ def opensim_lengths(model_path: Path) -> dict:
 
 
 def elbow_curves() -> dict[str, list[float]]:
-    """configs/elbow.toml's muscles' lengths (mm) at each of ``FLEXIONS``, by arm26's names."""
+    """configs/elbow.toml's muscles' lengths (mm) at each of ``FLEXIONS``, by name."""
     from biceps.configs import FOLDER
     from biceps.engine.config import load_config
 
@@ -87,8 +85,8 @@ def elbow_curves() -> dict[str, list[float]]:
     for flexion in FLEXIONS:
         posed = arm.at_flexion(flexion)
         lengths = dict(zip(posed.names, (muscle.length for muscle in posed.muscles)))
-        for theirs, ours in ARM26_MUSCLES.items():
-            curves.setdefault(theirs, []).append(10.0 * lengths[ours])
+        for name in ARM26_MUSCLES:
+            curves.setdefault(name, []).append(10.0 * lengths[name])
     return curves
 
 

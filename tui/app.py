@@ -364,8 +364,8 @@ class BicepsApp(App[None]):
         name = scene.arm.names[scene.selected]
         hide = name not in scene.hidden
         self._change(lambda scene: scene.with_hidden(name, hide))
-        self.notify(f"{name} {'hidden' if hide else 'shown'}; y shows it again" if hide
-                    else f"{name} shown", markup=False)
+        self.notify(f"{name} hidden; y shows it again" if hide else f"{name} shown",
+                    markup=False)
 
     def action_switch_colours(self) -> None:
         strain = self.scene.render.colour_by != "strain"

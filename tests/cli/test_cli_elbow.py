@@ -12,8 +12,8 @@ from biceps.configs import FOLDER
 from biceps.engine.config import load_config, rgb
 
 ELBOW = FOLDER / "elbow.toml"
-NAMES = ["biceps_long", "brachialis", "biceps_short", "triceps_medial", "triceps_lateral",
-         "triceps_long"]
+NAMES = ["BIClong", "BRA", "BICshort", "TRImed", "TRIlat",
+         "TRIlong"]
 
 
 def run(*args):
@@ -31,8 +31,8 @@ def test_info_json_lists_every_muscle_at_its_own_volume():
     lengths = {each["name"]: each["length_cm"] for each in facts["muscles"]}
     straight = {each["name"]: each["length_cm"] for each in
                 json.loads(run("info", ELBOW, "--flexion", "0", "--json").stdout)["muscles"]}
-    assert lengths["triceps_long"] > straight["triceps_long"]
-    assert lengths["brachialis"] < straight["brachialis"]
+    assert lengths["TRIlong"] > straight["TRIlong"]
+    assert lengths["BRA"] < straight["BRA"]
 
 
 def test_info_lists_one_muscle_for_a_single_muscle_file():
@@ -54,7 +54,7 @@ def test_export_mesh_writes_each_muscle_as_a_named_part_in_its_colour(tmp_path):
     scene = trimesh.load(out, force="scene")
     assert set(scene.geometry) == {*NAMES, "scapula", "humerus", "radius", "ulna"}
     config = load_config(ELBOW)
-    wanted = {"biceps_long": config.render.muscle_colour,
+    wanted = {"BIClong": config.render.muscle_colour,
               **{c.name: c.colour for c in config.arm.companions}}
     for name, colour in wanted.items():
         assert scene.geometry[name].is_watertight, name

@@ -52,7 +52,7 @@ async def test_a_node_edit_changes_the_picked_muscle_alone_and_undo_takes_it_bac
     async with biceps(size=(120, 40), on=elbow) as session:
         app, pilot = session.app, session.pilot
         before = app.scene.arm
-        await pilot.press("t")  # the brachialis
+        await pilot.press("t")  # the BRA
         await _edit(session, 5, radius="2.6")
         after = app.scene.arm
         assert after.muscles[1].radii[4] == 2.6
@@ -70,7 +70,7 @@ async def test_a_node_edit_changes_the_picked_muscle_alone_and_undo_takes_it_bac
 async def test_an_edited_companion_is_saved_and_loads_again(biceps, elbow):
     async with biceps(size=(120, 40), on=elbow) as session:
         app, pilot = session.app, session.pilot
-        await pilot.press("t", "C", "C")  # the brachialis; then the elbow bends
+        await pilot.press("t", "C", "C")  # the BRA; then the elbow bends
         await _edit(session, 5, radius="2.6")
         edited = app.scene.arm
         await pilot.press("ctrl+s")
@@ -89,7 +89,7 @@ async def test_contracting_the_biceps_lengthens_the_triceps_each_at_its_own_volu
         after = session.app.scene.arm
         assert after.flexion > before.flexion
         for name, old, new in zip(after.names, before.muscles, after.muscles):
-            assert (new.length > old.length) == name.startswith("triceps")
+            assert (new.length > old.length) == name.startswith("TRI")
             assert new.volume_error < 1e-12
 
 
@@ -97,7 +97,7 @@ async def test_y_hides_the_picked_muscle_and_shows_it_again(biceps, elbow):
     async with biceps(size=(120, 40), on=elbow) as session:
         app, pilot = session.app, session.pilot
         await pilot.press("t", "y")
-        assert app.scene.hidden == {"brachialis"}
+        assert app.scene.hidden == {"BRA"}
         await session.settle()
         await pilot.press("y")
         assert app.scene.hidden == frozenset()
@@ -120,7 +120,7 @@ async def test_the_palette_lists_every_muscle_and_picks_one(biceps, elbow):
         offered = {hit.text async for hit in provider.discover()}
         names = session.app.scene.arm.names
         assert {f"Edit muscle {name}" for name in names} <= offered
-        await session.pilot.press("ctrl+p", *"edit muscle triceps_lateral")
+        await session.pilot.press("ctrl+p", *"edit muscle TRIlat")
         commands = session.app.screen.query_one(CommandList)
         for _ in range(1000):  # the palette searches in the background
             if commands.option_count:
@@ -128,7 +128,7 @@ async def test_the_palette_lists_every_muscle_and_picks_one(biceps, elbow):
             await session.pilot.pause(0.01)
         await session.pilot.press("enter")
         await session.settle()
-        assert session.app.scene.selected == names.index("triceps_lateral")
+        assert session.app.scene.selected == names.index("TRIlat")
 
 
 async def test_the_palette_lists_no_muscles_for_one(biceps):

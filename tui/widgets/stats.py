@@ -3,6 +3,7 @@ thickness."""
 
 from __future__ import annotations
 
+from rich.console import Group
 from rich.table import Table
 from textual.widgets import Static
 
@@ -35,14 +36,13 @@ class Stats(Static):
         table.add_row("max radius", f"{_number(muscle.max_radius, 3)} cm")
         table.add_row("girth", f"{_number(muscle.girth, 2)} cm")
         if len(arm.names) > 1:
-            table.add_row("", "")
-            for name, each in zip(arm.names, arm.muscles):
-                table.add_row(name, f"{_number(each.length, 2)} cm {_number(each.volume, 1)} cm³ "
-                                    f"{_error(each.volume_error)}")
+            shown = Group(table, "", _muscles_table(arm, selected))
+        else:
+            shown = table
         # The same rows in a panel of fixed width: once laid out, a new muscle needs a
         # repaint, not a layout of the whole screen (at every step of a held key); only
         # another muscle picked, with other rows, needs a layout.
-        self.update(table, layout=table.row_count != self._rows)
+        self.update(shown, layout=table.row_count != self._rows)
         self._rows = table.row_count
 
 
@@ -53,6 +53,20 @@ def _number(value: float, decimals: int) -> str:
     if value == 0 or 10.0 ** -decimals <= abs(value) < 1e5:
         return f"{value:.{decimals}f}"
     return f"{value:.4g}"
+
+
+def _muscles_table(arm: Arm, selected: int) -> Table:
+    """A row for each muscle, the picked one bold: its length, volume and the volume's
+    relative error, in as few columns as a narrow panel holds."""
+    table = Table.grid(padding=(0, 1))
+    table.add_column(no_wrap=True, overflow="ellipsis", max_width=10)
+    for _ in range(3):
+        table.add_column(no_wrap=True, justify="right")
+    table.add_row("muscle", "cm", "cm³", "error", style="dim")
+    for index, (name, muscle) in enumerate(zip(arm.names, arm.muscles)):
+        table.add_row(name, _number(muscle.length, 2), _number(muscle.volume, 1),
+                      _error(muscle.volume_error), style="bold" if index == selected else "")
+    return table
 
 
 def _error(error: float) -> str:
