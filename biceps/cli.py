@@ -216,8 +216,9 @@ def doctor(graphics: str) -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print JSON for scripts.")
 @_refusals_exit_2
 def info(config: Path, length: float | None, flexion: float | None, as_json: bool) -> None:
-    """Length, flexion, volume and radii of the muscle in CONFIG, and of every other muscle
-    there."""
+    """Length, flexion, volume and radii of the muscle in CONFIG.
+
+    With several muscles, a line for each: length, volume, its error, largest radius."""
     from biceps.engine.config import load_config
 
     arm = posed(load_config(config).arm, length, flexion)

@@ -14,9 +14,8 @@ from biceps.engine.anatomy import PARTS, arm_parts, tendon_share
 from biceps.engine.bones import bone_parts
 from biceps.engine.clearance import GAP, section_offsets
 from biceps.engine.config import DEFAULT_CONFIG, load_config
-from biceps.engine.export import write_mesh
 from biceps.engine.skeleton import Skeleton
-from solids import solid
+from solids import exported as exported_parts, solid
 
 FLEXIONS = range(0, 131, 10)
 SEGMENTS = 48
@@ -30,13 +29,7 @@ def default_arm():
 @pytest.fixture(scope="module")
 def exported(default_arm, tmp_path_factory):
     """The arm at each flexion, exported as glTF and read back: {flexion: {part: mesh}}."""
-    folder = tmp_path_factory.mktemp("exports")
-    meshes = {}
-    for flexion in FLEXIONS:
-        path = folder / f"arm{flexion}.glb"
-        write_mesh(path, default_arm.at_flexion(flexion), SEGMENTS)
-        meshes[flexion] = dict(trimesh.load(path, force="scene").geometry)
-    return meshes
+    return exported_parts(default_arm, FLEXIONS, SEGMENTS, tmp_path_factory.mktemp("exports"))
 
 
 @pytest.mark.parametrize("flexion", FLEXIONS)

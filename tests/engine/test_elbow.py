@@ -13,9 +13,8 @@ from hypothesis import given, settings, strategies as st
 from biceps.configs import FOLDER
 from biceps.engine.anatomy import BONES, arm_parts
 from biceps.engine.config import load_config
-from biceps.engine.export import write_mesh
 from biceps.engine.muscle import VOLUME_MODES
-from solids import solid
+from solids import exported, solid
 
 # arm26's six muscles at every 10 degrees: benchmarks/arm26_reference.py --write made it.
 REFERENCE = json.loads((Path(__file__).parent / "data" / "arm26_elbow.json").read_text())
@@ -100,14 +99,9 @@ def test_the_triceps_wraps_round_the_back_of_the_elbow_when_bent(elbow):
 @pytest.fixture(scope="module")
 def solids(elbow, tmp_path_factory):
     """Every part at every 10 degrees, exported as glTF, read back and made solid."""
-    folder = tmp_path_factory.mktemp("elbow")
-    result = {}
-    for flexion in FLEXIONS:
-        path = folder / f"elbow{flexion}.glb"
-        write_mesh(path, elbow.at_flexion(flexion), SEGMENTS)
-        parts = dict(trimesh.load(path, force="scene").geometry)
-        result[flexion] = {name: solid(mesh) for name, mesh in parts.items()}
-    return result
+    meshes = exported(elbow, FLEXIONS, SEGMENTS, tmp_path_factory.mktemp("elbow"))
+    return {flexion: {name: solid(mesh) for name, mesh in parts.items()}
+            for flexion, parts in meshes.items()}
 
 
 @pytest.mark.parametrize("flexion", FLEXIONS)

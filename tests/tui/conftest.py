@@ -27,6 +27,19 @@ class Session:
     def warnings(self) -> list[str]:
         return [note.message for note in self.notes if note.severity != "information"]
 
+    async def run_command(self, text: str) -> None:
+        """Type ``text`` into the command palette and run the first command it finds."""
+        from textual.command import CommandList
+
+        await self.pilot.press("ctrl+p", *text)
+        commands = self.app.screen.query_one(CommandList)
+        for _ in range(1000):  # the palette searches in the background
+            if commands.option_count:
+                break
+            await self.pilot.pause(0.01)
+        await self.pilot.press("enter")
+        await self.settle()
+
     async def settle(self) -> None:
         """Wait until the picture shows the latest scene and every export is written."""
         app, pilot = self.app, self.pilot
