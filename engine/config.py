@@ -415,11 +415,10 @@ def _companions(table: ConfigFile, skeleton: Skeleton,
         if name == table.muscle.name:
             raise fail(where, f"{name!r} is the [muscle]'s name already: give each muscle "
                               "its own")
-        length = _length_of(companion_table.length, companion_table.flexion, "flexion",
-                            skeleton, lambda location, message: fail((*where, *location[1:]),
-                                                                     message))
         path = companion_table.path()
+        length = companion_table.length
         if companion_table.flexion is not None:
+            _check_flexion(companion_table.flexion, skeleton, (*where, "flexion"), fail)
             length = path.length_at(companion_table.flexion)
         radii, growth = companion_table.profile()
         try:
@@ -462,13 +461,16 @@ def _length_of(length: float | None, flexion: float | None, flexion_key: str,
     ``muscle.flexion_key``, if either."""
     if flexion is None:
         return length
-    if not skeleton.min_flexion <= flexion <= skeleton.max_flexion:
-        raise fail(
-            ("muscle", flexion_key),
-            f"{flexion:g} degrees is outside skeleton.flexion_range, "
-            f"{skeleton.min_flexion:g} to {skeleton.max_flexion:g}",
-        )
+    _check_flexion(flexion, skeleton, ("muscle", flexion_key), fail)
     return skeleton.length_at(flexion)
+
+
+def _check_flexion(flexion: float, skeleton: Skeleton, location: tuple,
+                   fail: Callable[[tuple, str], ConfigError]) -> None:
+    """Refuse ``flexion`` (degrees), found at ``location``, outside the joint's range."""
+    if not skeleton.min_flexion <= flexion <= skeleton.max_flexion:
+        raise fail(location, f"{flexion:g} degrees is outside skeleton.flexion_range, "
+                             f"{skeleton.min_flexion:g} to {skeleton.max_flexion:g}")
 
 
 def _check_reach(arm: Arm, length: float, key: str,
