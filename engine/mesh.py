@@ -128,7 +128,7 @@ def muscle_mesh(
 
 
 def bent_muscle_mesh(radii, points, axes, segments: int = DEFAULT_SEGMENTS) -> Mesh:
-    """A muscle along a bent path (round around a wrapping cylinder), closed by hemispheres.
+    """A muscle along a bent path (round a wrapping cylinder), closed by hemispheres.
 
     radii: (n,) float64 node radii, all positive. points: (m, 3) float64 the centres of m
     rings equally spaced along the path, the first on the origin and the last on the

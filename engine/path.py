@@ -72,21 +72,21 @@ class MusclePath:
         if wrapped is None:
             direction = (end - start) / np.linalg.norm(end - start)
             return start + np.outer(share, end - start), np.tile(direction, (count, 1))
-        planar, first, turn, second = wrapped
+        planar, first, arc, second = wrapped
         # Equal steps of the whole path are equal steps of its planar part (the climb along
         # z is steady), so the stations are spaced evenly in the plane.
         u = share * planar
         flat, heading = np.empty((count, 2)), np.empty((count, 2))
         on_first = u <= first[2]
-        on_arc = ~on_first & (u <= first[2] + turn[2])
+        on_arc = ~on_first & (u <= first[2] + arc[2])
         on_second = ~(on_first | on_arc)
         for mask, (begin, stop, _), before in ((on_first, first, 0.0),
-                                               (on_second, second, first[2] + turn[2])):
+                                               (on_second, second, first[2] + arc[2])):
             way = (stop - begin) / np.linalg.norm(stop - begin)
             flat[mask] = begin + np.outer(u[mask] - before, way)
             heading[mask] = way
-        start_angle, step = turn[0], turn[1]
-        angle = start_angle + step * (u[on_arc] - first[2]) / turn[2]
+        start_angle, step = arc[0], arc[1]
+        angle = start_angle + step * (u[on_arc] - first[2]) / arc[2]
         radius = self.wrap.radius
         flat[on_arc] = radius * np.column_stack([np.cos(angle), np.sin(angle)])
         heading[on_arc] = np.sign(step) * np.column_stack([-np.sin(angle), np.cos(angle)])
