@@ -79,4 +79,5 @@ def _moved(source: list[Step], target: list[Step], current: Arm) -> Step | None:
 
 
 def _nodes(steps: list[Step]) -> int:
-    return sum(step.arm.muscle.node_count for step in steps)
+    # Every muscle's nodes: an arm of several muscles keeps each one's arrays.
+    return sum(muscle.node_count for step in steps for muscle in step.arm.muscles)

@@ -13,6 +13,7 @@ from hypothesis import given, settings, strategies as st
 from biceps.configs import FOLDER
 from biceps.engine.anatomy import BONES, arm_parts
 from biceps.engine.config import load_config
+from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import VOLUME_MODES
 from solids import exported, solid
 
@@ -150,3 +151,16 @@ def test_a_companion_follows_the_elbow_from_the_file_on(tmp_path):
     assert companion.muscle.reference_length == 5.0
     assert companion.muscle.length == pytest.approx(companion.path.length_at(arm.flexion))
     assert companion.muscle.volume == pytest.approx(companion.muscle.reference_volume, rel=1e-12)
+
+
+def test_an_edit_that_leaves_a_companion_unable_to_follow_the_elbow_is_refused(elbow):
+    index = elbow.names.index("TRIlong")
+    triceps = elbow.muscles[index]
+    # Its belly all but gone, its tendons kept: stretched as far as the bent elbow takes it,
+    # the belly would have to thin past nothing to keep the volume.
+    thin = triceps
+    for node in np.flatnonzero(triceps.growth > 0):
+        thin = thin.with_radius(int(node), 0.05)
+    with pytest.raises(RefusedChange, match="TRIlong would have to stretch"):
+        elbow.with_muscle_at(index, thin)
+    assert elbow.muscles[index] is triceps
