@@ -159,7 +159,7 @@ class CompanionTable(_ProfileTable):
     origin: Vector
     insertion: Vector
     wrap: WrapSide | None = None
-    wrap_radius: Positive | None = None
+    wrap_radius: Bone | None = None
     colour: Colour | None = None
 
     @model_validator(mode="after")
