@@ -127,8 +127,13 @@ def _least_shifts(points, radius, axes, sides, centres, sphere_radii) -> np.ndar
 
 
 def _block_shifts(points, radius, axes, sides, centres, sphere_radii) -> np.ndarray:
+    # Each sphere's centre above each section's plane; only the spheres that cut some
+    # section's plane can block one, and with several muscles laid most do not: the
+    # (m, k, 3) arrays below are made for those that do.
+    height = np.einsum("kc,mc->mk", centres, axes) - np.einsum("mc,mc->m", points, axes)[:, None]
+    near = np.any(np.abs(height) < sphere_radii[None, :], axis=0)
+    centres, sphere_radii, height = centres[near], sphere_radii[near], height[:, near]
     offsets = centres[None, :, :] - points[:, None, :]  # (m, k, 3)
-    height = np.einsum("mkc,mc->mk", offsets, axes)  # each sphere's centre above the plane
     cut = np.sqrt(np.maximum(sphere_radii[None, :] ** 2 - height**2, 0.0))
     cuts = np.abs(height) < sphere_radii[None, :]
     in_plane = offsets - height[..., None] * axes[:, None, :]
