@@ -190,8 +190,8 @@ def _noting_updates(stats: Stats) -> list[float]:
     times: list[float] = []
     show = stats.show
 
-    def noted(arm) -> None:
-        show(arm)
+    def noted(*args, **kwargs) -> None:
+        show(*args, **kwargs)
         times.append(time.perf_counter())
 
     stats.show = noted  # type: ignore[method-assign]
