@@ -127,28 +127,24 @@ def _least_shifts(points, radius, axes, sides, centres, sphere_radii) -> np.ndar
 
 
 def _block_shifts(points, radius, axes, sides, centres, sphere_radii) -> np.ndarray:
-    # Each sphere's centre above each section's plane; only the spheres that cut some
-    # section's plane can block one, and with several muscles laid most do not: the
-    # (m, k, 3) arrays below are made for those that do.
+    # Each sphere's centre above each section's plane. Only the pairs where the sphere cuts
+    # the section's plane can block; with several muscles laid few do, and of those fewer
+    # reach the disc: the work below is on those pairs alone, as flat arrays.
     height = np.einsum("kc,mc->mk", centres, axes) - np.einsum("mc,mc->m", points, axes)[:, None]
-    near = np.any(np.abs(height) < sphere_radii[None, :], axis=0)
-    centres, sphere_radii, height = centres[near], sphere_radii[near], height[:, near]
-    offsets = centres[None, :, :] - points[:, None, :]  # (m, k, 3)
-    cut = np.sqrt(np.maximum(sphere_radii[None, :] ** 2 - height**2, 0.0))
-    cuts = np.abs(height) < sphere_radii[None, :]
-    in_plane = offsets - height[..., None] * axes[:, None, :]
-    ahead = np.einsum("mkc,mc->mk", in_plane, sides)
-    reach = radius[:, None] + cut + GAP
-    spread = ahead**2 - np.einsum("mkc,mkc->mk", in_plane, in_plane) + reach**2
-    blocked = cuts & (spread > 0.0)
-    root = np.sqrt(np.where(blocked, spread, 0.0))
-    low = np.where(blocked, ahead - root, np.inf)
-    high = np.where(blocked, ahead + root, -np.inf)
+    section, sphere = np.nonzero(np.abs(height) < sphere_radii[None, :])
+    height = height[section, sphere]
+    axis = axes[section]
+    in_plane = centres[sphere] - points[section] - height[:, None] * axis
+    ahead = np.einsum("pc,pc->p", in_plane, sides[section])
+    reach = radius[section] + np.sqrt(np.maximum(sphere_radii[sphere] ** 2 - height**2, 0.0)) + GAP
+    spread = ahead**2 - np.einsum("pc,pc->p", in_plane, in_plane) + reach**2
+    blocked = spread > 0.0
+    section, ahead, root = section[blocked], ahead[blocked], np.sqrt(spread[blocked])
+    low, high = ahead - root, ahead + root
     shift = np.zeros(len(points))
     for _ in range(_ROUNDS):
-        inside = (low < shift[:, None]) & (shift[:, None] < high)
-        lifted = np.max(np.where(inside, high, shift[:, None]), axis=1)
-        if np.array_equal(lifted, shift):
+        inside = (low < shift[section]) & (shift[section] < high)
+        if not inside.any():
             break
-        shift = lifted
+        np.maximum.at(shift, section[inside], high[inside])
     return shift
