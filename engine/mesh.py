@@ -57,7 +57,8 @@ class Mesh:
         meshes = list(meshes)
         if not meshes:
             return Mesh(np.empty((0, 3)), np.empty((0, 3)), np.empty((0, 3), np.int32))
-        offsets = np.cumsum([0] + [len(mesh.vertices) for mesh in meshes[:-1]])
+        # int32 offsets keep the sums int32: no int64 copy of every index to convert back
+        offsets = np.cumsum([0] + [len(mesh.vertices) for mesh in meshes[:-1]], dtype=np.int32)
         return Mesh(
             np.concatenate([mesh.vertices for mesh in meshes]),
             np.concatenate([mesh.normals for mesh in meshes]),
