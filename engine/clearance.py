@@ -103,7 +103,7 @@ def path_offsets(points, axes, radii, centres, sphere_radii) -> np.ndarray:
 def _bends(axes: np.ndarray) -> np.ndarray:
     """(m,) bool: the sections whose unit axis (of ``axes`` (m, 3)) is not that of a
     neighbour, to a rounding error."""
-    turns = ~np.all(np.isclose(axes[1:], axes[:-1], rtol=0.0, atol=1e-12), axis=1)
+    turns = np.any(np.abs(axes[1:] - axes[:-1]) > 1e-12, axis=1)
     bends = np.zeros(len(axes), dtype=bool)
     bends[1:] |= turns
     bends[:-1] |= turns
