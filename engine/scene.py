@@ -141,28 +141,31 @@ def outline(vertices: np.ndarray, directions: int = 256, stride: int = 4) -> np.
     height = 1.0 - 2.0 * index / directions
     turn = np.pi * (1.0 + 5.0**0.5) * index
     ring = np.sqrt(1.0 - height**2)
-    lattice = np.column_stack([ring * np.cos(turn), height, ring * np.sin(turn)])
+    lattice = np.array([ring * np.cos(turn), height, ring * np.sin(turn)])  # (3, k)
     some = vertices[::stride]
     centre = (some.min(axis=0) + some.max(axis=0)) / 2.0
-    farthest = np.empty(directions, np.int64)
-    _farthest_along(lattice, np.ascontiguousarray(some - centre), farthest)
+    farthest, best = np.empty(directions, np.int64), np.empty(directions)
+    _farthest_along(lattice, np.ascontiguousarray(some - centre), farthest, best)
     return some[np.unique(farthest)]
 
 
 @ngjit
-def _farthest_along(directions, points, farthest):
-    """For each of ``directions`` (k, 3), the index into ``points`` (m, 3) of the one
-    farthest along it, into ``farthest`` (k,) int64. A kernel, not numpy: einsum holds the
-    GIL for all its run, 45 ms at 5,000 nodes, and the app's keys wait that long; BLAS's
-    threads took tens of milliseconds to start on a busy machine."""
-    for k in range(directions.shape[0]):
-        x, y, z = directions[k, 0], directions[k, 1], directions[k, 2]
-        best, where = -np.inf, 0
-        for i in range(points.shape[0]):
-            reach = x * points[i, 0] + y * points[i, 1] + z * points[i, 2]
-            if reach > best:
-                best, where = reach, i
-        farthest[k] = where
+def _farthest_along(directions, points, farthest, best):
+    """For each of ``directions`` (3, k), by component, the index into ``points`` (m, 3) of
+    the first one farthest along it, into ``farthest`` (k,) int64; ``best`` (k,) float64 is
+    working space. A kernel, not numpy: einsum holds the GIL for all its run, 45 ms at 5,000
+    nodes, and the app's keys wait that long; BLAS's threads took tens of milliseconds to
+    start on a busy machine. The directions are the inner loop, each component a contiguous
+    row, so that LLVM runs it on several directions at once (SIMD): 2.1 -> 0.36 ms for the
+    six muscles' 8,100 points, the same indices."""
+    best[:] = -np.inf
+    farthest[:] = 0
+    for i in range(points.shape[0]):
+        x, y, z = points[i, 0], points[i, 1], points[i, 2]
+        for k in range(directions.shape[1]):
+            reach = directions[0, k] * x + directions[1, k] * y + directions[2, k] * z
+            if reach > best[k]:
+                best[k], farthest[k] = reach, i
 
 
 def view_camera(view: View, vertices: np.ndarray, aspect: float) -> tuple[Camera, np.ndarray]:
