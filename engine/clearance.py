@@ -16,6 +16,11 @@ in ``s`` that rules out one interval. Each section takes the least ``s >= 0`` ou
 such interval, and the moves are then smoothed from above (no section moves less than it
 needs) so the muscle leans no steeper than ``SLOPE``. The tendons' last centimetre at either
 end, which is where they hold on to their bone, is left where it is.
+
+A muscle laid over others (``engine/anatomy.py``) is moved the same way along a direction
+turned round its axis, towards its own side of the arm (`best_lean`), so that the elbow's
+muscles pack round the humerus instead of stacking in the plane of the bend; the turn fades
+to nothing at the elbow, where the heads of a muscle meet on one tendon.
 """
 
 from __future__ import annotations
@@ -32,6 +37,10 @@ _BLOCK = 4096  # sections tested against the spheres at a time: (block, spheres)
 GAP = 0.1  # cm kept between muscle and bone
 SLOPE = 0.7  # the most a section moves per cm along the muscle
 HOLD = 1.0  # cm at either end where the tendon holds on to its bone and does not move
+LEANS = np.radians(np.arange(0.0, 80.5, 10.0))
+"""The leans a muscle laid over others may take (see `best_lean`), straight first: up to 80
+degrees round from straight away from the elbow, towards its side of the arm."""
+SPREAD = 8.0  # cm from the elbow's centre at which a muscle takes its whole lean
 _ROUNDS = 24  # passes over the intervals; each lifts a section past one more bone
 
 
@@ -67,24 +76,32 @@ def section_offsets(start, end, radii, centres, sphere_radii,
                         radii, centres, sphere_radii)
 
 
-def path_offsets(points, axes, radii, centres, sphere_radii) -> np.ndarray:
+def path_offsets(points, axes, radii, centres, sphere_radii, lean: float = 0.0) -> np.ndarray:
     """The sideways moves (m, 3) of m sections centred at ``points`` (m, 3), equally spaced
     along a path (straight, or bent round the elbow), each in the plane across its unit
     ``axes`` (m, 3), that keep the muscle of node ``radii`` (n,) clear of the spheres; m - 1
-    is a multiple of n - 1.
+    is a multiple of n - 1. ``lean`` (radians) turns the direction of the moves about each
+    section's axis, from straight away from the elbow towards the muscle's side.
 
     Only sections on a straight stretch move: there the planes are parallel, so the volume
     does not change (Cavalieri). Where the path bends, moving a section away from the bend
     would lengthen the tube and grow its volume (Pappus), so the sections whose plane is
     not parallel to a neighbour's stay, and the moves ease off towards them at ``SLOPE``.
     """
+    side = _leaning(_sides(points, axes), axes, lean * _spread(points))
+    radius = np.interp(np.linspace(0.0, 1.0, len(points)), np.linspace(0.0, 1.0, len(radii)),
+                       radii)
+    shift = _least_shifts(points, radius, axes, side, centres, sphere_radii)
+    return _smoothed(points, axes, shift)[:, None] * side
+
+
+def _smoothed(points, axes, shift) -> np.ndarray:
+    """(m,) how far the sections (centred at ``points``, across ``axes`` (m, 3)) move, given
+    the least moves (m,) that clear them (see `path_offsets`)."""
     steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
     along = np.concatenate([[0.0], np.cumsum(steps)])
     length = along[-1]
-    radius = np.interp(np.linspace(0.0, 1.0, len(points)), np.linspace(0.0, 1.0, len(radii)),
-                       radii)
-    side = _sides(points, axes)
-    shift = _least_shifts(points, radius, axes, side, centres, sphere_radii)
+    shift = shift.copy()
     shift[(along < HOLD) | (along > length - HOLD)] = 0.0
     # The least smooth profile above the needs: each need spreads down both ways at SLOPE,
     # max_j (shift_j - SLOPE |a_i - a_j|), the larger of a running maximum from each end
@@ -97,7 +114,52 @@ def path_offsets(points, axes, radii, centres, sphere_radii) -> np.ndarray:
     if bent.size:
         nearest = np.min(np.abs(along[:, None] - along[bent][None, :]), axis=1)
         smooth = np.minimum(smooth, SLOPE * nearest)
-    return smooth[:, None] * side
+    return smooth
+
+
+def best_lean(points, axes, radii, centres, sphere_radii) -> float:
+    """Of :data:`LEANS`, the lean (radians, see `path_offsets`; the sections ``points`` and
+    ``axes`` (m, 3) as there) that keeps the muscle closest round the humerus: turned
+    towards the side of the arm its line lies on, so that it lies beside the muscles laid
+    before it and never crosses over as the elbow moves, the one whose sections reach
+    least far from the humerus's axis (the world's ``y``) above the elbow, to a millimetre,
+    the straighter of two that tie. A path bent round the elbow does not lean: its sections
+    near the bend cannot move (`path_offsets`), and leaning, they would fall short of
+    clearing the muscles there."""
+    if _bends(axes).any():
+        return 0.0
+    # Judged on the nodes' sections alone (64 at most), which the spheres cut once for all
+    # the leans: the lean is one number, and the muscle is laid at every pose.
+    nodes = np.linspace(0, len(points) - 1, min(len(radii), 64)).round().astype(int)
+    points, axes = points[nodes], axes[nodes]
+    radii = np.interp(np.linspace(0.0, 1.0, len(nodes)), np.linspace(0.0, 1.0, len(radii)), radii)
+    sides, spread = _sides(points, axes), _spread(points)
+    cuts = _cuts(points, radii, axes, centres, sphere_radii)
+    above = points[:, 1] > 0.0 if np.any(points[:, 1] > 0.0) else np.ones(len(points), bool)
+    leans = LEANS * (1.0 if points[:, 2].mean() >= 0.0 else -1.0)
+    reaches = []
+    for lean in leans:
+        way = _leaning(sides, axes, lean * spread)
+        moved = points + _smoothed(points, axes, _shifts(*cuts, way, len(points)))[:, None] * way
+        reaches.append(np.max((np.hypot(moved[:, 0], moved[:, 2]) + radii)[above]))
+    return float(leans[np.lexsort((np.abs(leans), np.round(reaches, 1)))[0]])
+
+
+def _spread(points: np.ndarray) -> np.ndarray:
+    """(m,) how far the sections centred at ``points`` (m, 3) take their muscle's lean:
+    none at the elbow, where the heads of a muscle join one tendon (the triceps' on the
+    olecranon, the biceps' to the radius), all of it from ``SPREAD`` cm away."""
+    return np.clip(np.linalg.norm(points, axis=1) / SPREAD, 0.0, 1.0)
+
+
+def _leaning(sides: np.ndarray, axes: np.ndarray, lean) -> np.ndarray:
+    """(m, 3) the unit ``sides`` (m, 3) turned about the unit ``axes`` by ``lean`` radians,
+    one for all or (m,) one each."""
+    lean = np.asarray(lean, dtype=np.float64)
+    if not lean.any():
+        return sides
+    lean = np.broadcast_to(lean, len(sides))[:, None]
+    return np.cos(lean) * sides + np.sin(lean) * np.cross(axes, sides)
 
 
 def _bends(axes: np.ndarray) -> np.ndarray:
@@ -127,21 +189,33 @@ def _least_shifts(points, radius, axes, sides, centres, sphere_radii) -> np.ndar
 
 
 def _block_shifts(points, radius, axes, sides, centres, sphere_radii) -> np.ndarray:
+    return _shifts(*_cuts(points, radius, axes, centres, sphere_radii), sides, len(points))
+
+
+def _cuts(points, radius, axes, centres, sphere_radii):
+    """The pairs (section, sphere) where the sphere cuts the section's plane: the section's
+    index (p,), the sphere's circle's centre from the section's (p, 3) and how far apart
+    the two must keep (p,)."""
     # Each sphere's centre above each section's plane. Only the pairs where the sphere cuts
     # the section's plane can block; with several muscles laid few do, and of those fewer
     # reach the disc: the work below is on those pairs alone, as flat arrays.
     height = np.einsum("kc,mc->mk", centres, axes) - np.einsum("mc,mc->m", points, axes)[:, None]
     section, sphere = np.nonzero(np.abs(height) < sphere_radii[None, :])
     height = height[section, sphere]
-    axis = axes[section]
-    in_plane = centres[sphere] - points[section] - height[:, None] * axis
-    ahead = np.einsum("pc,pc->p", in_plane, sides[section])
+    in_plane = centres[sphere] - points[section] - height[:, None] * axes[section]
     reach = radius[section] + np.sqrt(np.maximum(sphere_radii[sphere] ** 2 - height**2, 0.0)) + GAP
+    return section, in_plane, reach
+
+
+def _shifts(section, in_plane, reach, sides, count: int) -> np.ndarray:
+    """(count,) each section's least move s >= 0 along its unit side (``sides`` (count, 3))
+    that keeps it clear of every circle (`_cuts`): each rules out one interval of s."""
+    ahead = np.einsum("pc,pc->p", in_plane, sides[section])
     spread = ahead**2 - np.einsum("pc,pc->p", in_plane, in_plane) + reach**2
     blocked = spread > 0.0
     section, ahead, root = section[blocked], ahead[blocked], np.sqrt(spread[blocked])
     low, high = ahead - root, ahead + root
-    shift = np.zeros(len(points))
+    shift = np.zeros(count)
     for _ in range(_ROUNDS):
         inside = (low < shift[section]) & (shift[section] < high)
         if not inside.any():

@@ -140,6 +140,25 @@ def test_every_muscles_mesh_holds_its_volume_wrapped_or_straight(elbow, flexion)
     assert any(path.wraps(flexion) for path in arm.paths) == (flexion <= 40 or flexion >= 70)
 
 
+# How far a muscle may stand from the humerus's axis (the world's y, engine/skeleton.py):
+# an adult's upper arm is about 30 to 40 cm round its middle (the NHANES anthropometric
+# reference data), its skin 5 to 6.5 cm from its centre; 7.5 cm allows for the humerus
+# lying off that centre. Bent round the elbow (70 degrees on), the triceps' heads still lie
+# one over another behind the humerus, as before: their bound there is the 12 cm that was.
+REACH = {0.0: {"*": 7.5}, 60.0: {"*": 7.5}, 130.0: {"*": 7.5, "TRIlat": 9.0, "TRIlong": 12.0}}
+
+
+@pytest.mark.parametrize("flexion", sorted(REACH))
+def test_the_muscles_pack_round_the_humerus_not_fanned_out_in_the_bend(elbow, flexion):
+    # Measured on the scene's parts above the elbow (below it they lie on the forearm).
+    parts = arm_parts(elbow.at_flexion(flexion), SEGMENTS)
+    for name in elbow.names:
+        vertices = parts[name].vertices
+        above = vertices[vertices[:, 1] > 0.0]
+        reach = np.hypot(above[:, 0], above[:, 2]).max()
+        assert reach <= REACH[flexion].get(name, REACH[flexion]["*"]), (name, reach)
+
+
 def test_a_companion_follows_the_elbow_from_the_file_on(tmp_path):
     # Its nodes are its shape at 5 cm; loaded, it is where the elbow puts it.
     path = tmp_path / "two.toml"
