@@ -12,7 +12,7 @@ import trimesh
 
 from biceps.engine.anatomy import PARTS, arm_parts, tendon_share
 from biceps.engine.bones import bone_parts
-from biceps.engine.clearance import GAP, section_offsets
+from biceps.engine.clearance import GAP, path_offsets, section_offsets
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.skeleton import Skeleton
 from solids import exported as exported_parts, solid
@@ -85,6 +85,15 @@ def test_a_section_moves_forward_just_clear_of_a_bone_in_its_way():
     np.testing.assert_allclose(offsets[2], [3.0 + GAP, 0.0, 0.0], atol=1e-6)
     assert np.all(offsets[[0, -1]] == 0.0)  # the attachments stay put
     assert np.all(np.abs(offsets[:, 1:]) < 1e-12)  # within the sections' planes
+
+
+def test_a_leaning_section_moves_sideways_just_clear_of_a_bone_in_its_way():
+    # As above, turned a quarter round the muscle's axis (down): from forward (+x) to +z.
+    points = np.column_stack([np.full(5, 1e-9), np.linspace(20.0, 0.0, 5), np.zeros(5)])
+    axes = np.tile([0.0, -1.0, 0.0], (5, 1))
+    offsets = path_offsets(points, axes, np.array([1.0, 1.0, 1.0]), np.array([[0.0, 10.0, 0.0]]),
+                           np.array([2.0]), lean=np.pi / 2)
+    np.testing.assert_allclose(offsets[2], [0.0, 0.0, 3.0 + GAP], atol=1e-6)
 
 
 def test_tendons_are_the_nodes_that_do_not_grow(default_arm):
