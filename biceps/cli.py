@@ -19,6 +19,7 @@ import gc
 import io
 import json
 import math
+import os
 import sys
 from contextlib import contextmanager
 from pathlib import Path
@@ -30,7 +31,7 @@ from biceps.configs import DEFAULT as DEFAULT_CONFIG
 from biceps.engine.bounds import COORDINATE, SCALE, OutOfBounds, finite
 from biceps.engine.errors import BicepsError
 from biceps.engine.names import printable
-from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Graphics
+from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Graphics, drawing_threads
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
@@ -149,6 +150,13 @@ def main() -> None:
     Run with no command (or just a CONFIG) to open the terminal app; `biceps app --help`
     lists its options.
     """
+    # Read here, before any command, so that a bad value is refused in words at the start
+    # rather than raised later inside the app's picture thread.
+    try:
+        drawing_threads(os.environ)
+    except BicepsError as error:
+        click.echo(f"biceps: {error}", err=True)
+        sys.exit(USAGE_ERROR)
 
 
 @main.command(short_help="Open the terminal app (the command when none is given).")

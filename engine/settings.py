@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, fields
-from typing import Any, Callable, Literal, get_args
+from typing import Any, Callable, Literal, Mapping, get_args
 
 from biceps.engine.bounds import COORDINATE, SCALE, Limits, OutOfBounds, finite, quoted, whole
 from biceps.engine.errors import SettingError
@@ -36,6 +36,23 @@ ColourBy = Literal["muscle", "strain"]
 
 COLOUR = "#[0-9a-fA-F]{6}"
 """A whole colour, ``#rrggbb``, as a regular expression."""
+
+
+THREADS_VARIABLE = "BICEPS_THREADS"
+"""The environment variable that sets how many threads draw a frame: a setting of the
+machine rather than of the model, whose file travels between machines."""
+
+
+def drawing_threads(environ: Mapping[str, str]) -> int | None:
+    """The threads a frame is drawn on, as :data:`THREADS_VARIABLE` in ``environ`` asks, or
+    None where it is unset or empty (then every core, ``engine/raster/bands.py``)."""
+    value = environ.get(THREADS_VARIABLE, "").strip()
+    if not value:
+        return None
+    if value.isdigit() and int(value) >= 1:  # no sign, no point, no exponent
+        return int(value)
+    raise SettingError(f"{THREADS_VARIABLE} is {quoted(value)}: it takes a whole number of "
+                       "threads from 1 (1 draws on one core), or unset for every core")
 
 
 Rule = Callable[[str, Any], Any]

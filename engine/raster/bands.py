@@ -14,9 +14,8 @@ the process when two threads start parallel kernels at once, which the app does 
 rendering while a picture is exported or a video recorded), and parallel kernels take
 several times as long to compile, on the cold first run the app is to start within 3.5 s.
 
-How many threads: ``BICEPS_THREADS`` in the environment, or else every core this process
-may run on. A setting of the machine rather than of the model's file, which travels between
-machines; 1 keeps everything on the calling thread.
+How many threads: ``BICEPS_THREADS`` in the environment (``engine/settings.py``), or else
+every core this process may run on; 1 keeps everything on the calling thread.
 """
 
 from __future__ import annotations
@@ -27,8 +26,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
+from biceps.engine.settings import drawing_threads
 
-THREADS_VARIABLE = "BICEPS_THREADS"
 
 SMALL_PICTURE = 32_000
 """Pixels below which a frame is drawn in one band, on the calling thread: handing a band
@@ -45,10 +44,11 @@ _pool_lock = threading.Lock()  # two renderers (the app's, an export's) may star
 
 
 def default_threads() -> int:
-    """``BICEPS_THREADS`` if set to a positive whole number, else this process's cores."""
-    value = os.environ.get(THREADS_VARIABLE, "").strip()
-    if value.isdigit() and int(value) >= 1:
-        return int(value)
+    """The threads ``BICEPS_THREADS`` asks for (`settings.drawing_threads`, which refuses
+    what is not a whole number from 1), else this process's cores."""
+    asked = drawing_threads(os.environ)
+    if asked is not None:
+        return asked
     if hasattr(os, "sched_getaffinity"):
         return max(len(os.sched_getaffinity(0)), 1)
     return max(os.cpu_count() or 1, 1)

@@ -20,6 +20,18 @@ def run(*args: str):
     return CliRunner().invoke(main, [str(a) for a in args])
 
 
+@pytest.mark.parametrize("command", [["info", DEFAULT_CONFIG], ["snapshot", DEFAULT_CONFIG,
+                                                                  "-o", "x.png"]])
+def test_a_bad_thread_count_in_the_environment_is_refused_before_any_command(
+        command, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(main, [str(a) for a in command],
+                                env={"BICEPS_THREADS": "many\x1b[2J"})
+    assert result.exit_code == 2
+    assert "biceps: BICEPS_THREADS is 'many\\x1b[2J': it takes a whole number" in result.output
+    assert not (tmp_path / "x.png").exists()
+
+
 def test_info_json_reports_the_pose_and_the_volume():
     result = run("info", DEFAULT_CONFIG, "--flexion", "90", "--json")
     assert result.exit_code == 0, result.output

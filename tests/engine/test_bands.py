@@ -5,10 +5,12 @@ import pytest
 
 from biceps.engine import raster
 from biceps.engine.config import DEFAULT_CONFIG, load_config
-from biceps.engine.raster.bands import THREADS_VARIABLE, Bands, default_threads
+from biceps.engine.errors import SettingError
+from biceps.engine.raster.bands import Bands, default_threads
 from biceps.engine.render import Renderer
 from biceps.engine.scene import (Scene, outline, scene_mesh, supersampling, view_camera,
                                  zoomed_light)
+from biceps.engine.settings import THREADS_VARIABLE
 from biceps.engine.transforms import Camera, Light
 
 SCENES = {
@@ -74,14 +76,21 @@ def test_phong_lights_a_triangle_larger_than_its_list_of_pixels():
     assert np.all(picture == 255)
 
 
-@pytest.mark.parametrize(("value", "expected"), [("3", 3), (" 1 ", 1), ("0", None),
-                                                 ("-2", None), ("many", None), ("", None)])
-def test_the_thread_count_comes_from_the_environment_if_it_is_sensible(monkeypatch, value,
-                                                                        expected):
+@pytest.mark.parametrize(("value", "expected"), [("3", 3), (" 1 ", 1), ("", 5)])
+def test_the_thread_count_comes_from_the_environment_or_the_cores(monkeypatch, value,
+                                                                   expected):
     monkeypatch.setenv(THREADS_VARIABLE, value)
     monkeypatch.setattr("os.sched_getaffinity", lambda _: {0, 1, 2, 3, 4}, raising=False)
     monkeypatch.setattr("os.cpu_count", lambda: 5)
-    assert default_threads() == (5 if expected is None else expected)
+    assert default_threads() == expected
+
+
+@pytest.mark.parametrize("value", ["0", "-2", "many", "1.5", "2e1"])
+def test_a_thread_count_that_is_no_whole_number_from_1_is_refused_in_words(monkeypatch,
+                                                                             value):
+    monkeypatch.setenv(THREADS_VARIABLE, value)
+    with pytest.raises(SettingError, match=f"BICEPS_THREADS is '{value}': it takes a whole"):
+        default_threads()
 
 
 @pytest.mark.parametrize("threads", [0, -1, 1.5, "2"])
