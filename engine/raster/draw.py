@@ -185,11 +185,13 @@ def _in_band(screen_xy, i0, i1, i2, band_start, band_end):
 
 
 @inline
-def _rasterize(shade, light, triangles, screen_xy, screen_z, screen_q, outcodes,
+def _rasterize(shade, on_screen, light, triangles, screen_xy, screen_z, screen_q, outcodes,
                attributes, lighting, pixels, depths, width, band_start, band_end, spans, planes,
                hits, shaded):
     """The triangle loop of the rasterize kernels, for the span shader ``shade`` in
-    perspective, and ``light`` if it is not None (see `_draw_triangle_lit`)."""
+    perspective; ``on_screen``, if it is not None, its shader for a triangle shallow enough
+    to shade on the screen (`_drift`); ``light``, if it is not None, the lighting of the
+    pixels ``shade`` lists (see `_draw_triangle_lit`). numba prunes the branches of a None."""
     span_lo, span_hi = spans[0], spans[1]  # once: each view made in the loop costs a refcount
     height = depths.shape[0] // width
     for t in range(triangles.shape[0]):
@@ -197,14 +199,20 @@ def _rasterize(shade, light, triangles, screen_xy, screen_z, screen_q, outcodes,
         if not (_in_band(screen_xy, i0, i1, i2, band_start, band_end)
                 and _visible(triangles, t, screen_xy, outcodes, width, height)):
             continue
-        if light is None:
+        if light is not None:
+            _draw_triangle_lit(shade, light, i0, i1, i2, screen_xy, screen_z, screen_q,
+                               attributes, lighting, pixels, depths, width, band_start,
+                               band_end, span_lo, span_hi, planes, hits, shaded)
+        elif on_screen is None:
             _draw_triangle(shade, shade, True, i0, i1, i2, screen_xy, screen_z, screen_q,
                            attributes, lighting, pixels, depths, width, band_start, band_end,
                            span_lo, span_hi, planes, hits, shaded)
         else:
-            _draw_triangle_lit(shade, light, i0, i1, i2, screen_xy, screen_z, screen_q,
-                               attributes, lighting, pixels, depths, width, band_start,
-                               band_end, span_lo, span_hi, planes, hits, shaded)
+            deep = _drift(screen_q[i0], screen_q[i1], screen_q[i2], attributes, i0, i1, i2) \
+                >= AFFINE_BELOW
+            _draw_triangle(shade, on_screen, deep, i0, i1, i2, screen_xy, screen_z, screen_q,
+                           attributes, lighting, pixels, depths, width, band_start, band_end,
+                           span_lo, span_hi, planes, hits, shaded)
 
 
 @ngjit
@@ -231,18 +239,9 @@ def rasterize_gouraud(triangles, screen_xy, screen_z, screen_q, outcodes, attrib
     the far one are left for `clip_triangles`. A triangle shallow enough is shaded on the
     screen, with no division (see the module's docstring).
     """
-    span_lo, span_hi = spans[0], spans[1]
-    height = depths.shape[0] // width
-    for t in range(triangles.shape[0]):
-        i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
-        if not (_in_band(screen_xy, i0, i1, i2, band_start, band_end)
-                and _visible(triangles, t, screen_xy, outcodes, width, height)):
-            continue
-        deep = _drift(screen_q[i0], screen_q[i1], screen_q[i2], attributes, i0, i1, i2) \
-            >= AFFINE_BELOW
-        _draw_triangle(shade_gouraud, shade_gouraud_on_screen, deep, i0, i1, i2, screen_xy,
-                       screen_z, screen_q, attributes, lighting, pixels, depths, width,
-                       band_start, band_end, span_lo, span_hi, planes, hits, shaded)
+    _rasterize(shade_gouraud, shade_gouraud_on_screen, None, triangles, screen_xy, screen_z,
+               screen_q, outcodes, attributes, lighting, pixels, depths, width, band_start,
+               band_end, spans, planes, hits, shaded)
 
 
 @ngjit
@@ -250,7 +249,7 @@ def rasterize_phong(triangles, screen_xy, screen_z, screen_q, outcodes, attribut
                     lighting, pixels, depths, width, band_start, band_end, spans, planes, hits,
                     shaded):
     """`rasterize_gouraud` with Phong shading, every triangle in perspective."""
-    _rasterize(shade_phong, light_phong, triangles, screen_xy, screen_z, screen_q, outcodes,
+    _rasterize(shade_phong, None, light_phong, triangles, screen_xy, screen_z, screen_q, outcodes,
                attributes, lighting, pixels, depths, width, band_start, band_end,
                spans, planes, hits, shaded)
 
@@ -260,6 +259,6 @@ def rasterize_overdraw(triangles, screen_xy, screen_z, screen_q, outcodes, attri
                        lighting, pixels, depths, width, band_start, band_end, spans, planes,
                        hits, shaded):
     """`rasterize_gouraud` counting the triangles that cover each pixel (`count_overdraw`)."""
-    _rasterize(count_overdraw, None, triangles, screen_xy, screen_z, screen_q, outcodes,
+    _rasterize(count_overdraw, None, None, triangles, screen_xy, screen_z, screen_q, outcodes,
                attributes, lighting, pixels, depths, width, band_start, band_end,
                spans, planes, hits, shaded)
