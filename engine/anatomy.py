@@ -13,9 +13,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from biceps.engine.bones import bone_meshes, bone_spheres
-from biceps.engine.clearance import best_lean, path_offsets, sections_per_segment
 from biceps.engine.mesh import Mesh, bent_muscle_mesh, muscle_mesh
 from biceps.engine.muscle import Muscle
+from biceps.engine.packing import (arm_leans, centreline, laid_offsets, laying_order,
+                                   section_radii)
 from biceps.engine.path import MusclePath
 
 if TYPE_CHECKING:
@@ -33,43 +34,38 @@ def arm_parts(arm: Arm, segments: int, hidden: frozenset[str] = frozenset()) -> 
     The muscles are laid on the bones one at a time, deepest first: the companions in their
     order, then the driver over them; each keeps clear of the bones and of those laid
     before it (hidden or not, so hiding one moves no other), and one laid over others
-    turns to its own side of them, round the humerus.
+    turns to its own side of them, round the humerus (`arm_leans`).
     """
     pose, skeleton = arm.pose, arm.skeleton
-    centres, radii = bone_spheres(skeleton, pose)
-    bones = len(radii)
+    spheres = bone_spheres(skeleton, pose)
     laid = {}
-    order = [*range(1, len(arm.names)), 0]
-    for index in order:
+    for index, lean in zip(laying_order(arm), arm_leans(arm)):
+        centres, radii = spheres
         mesh, (more_centres, more_radii) = muscle_part(
-            arm.muscles[index], arm.paths[index], pose.flexion, (centres, radii), segments,
-            beside=len(radii) > bones)
+            arm.muscles[index], arm.paths[index], pose.flexion, spheres, segments, lean)
         laid[arm.names[index]] = mesh
-        centres, radii = np.concatenate([centres, more_centres]), np.concatenate([radii, more_radii])
+        spheres = np.concatenate([centres, more_centres]), np.concatenate([radii, more_radii])
     parts = {name: laid[name] for name in arm.names if name not in hidden}
     return {**parts, **bone_meshes(skeleton, pose, segments)}
 
 
 def muscle_part(muscle: Muscle, path: MusclePath, flexion: float,
                 spheres: tuple[np.ndarray, np.ndarray], segments: int,
-                beside: bool = False) -> tuple[Mesh, tuple[np.ndarray, np.ndarray]]:
+                lean: float | None = None) -> tuple[Mesh, tuple[np.ndarray, np.ndarray]]:
     """One muscle on its path at ``flexion`` degrees, its sections moved clear of
-    ``spheres`` (centres (k, 3), radii (k,)), turned to its side of them if it lies
-    ``beside`` other muscles (`best_lean`); and its sections as spheres, which the muscles
-    laid after it keep clear of. A straight path's sections stay parallel, so the mesh keeps
-    the muscle's volume exactly (``engine/mesh.py``)."""
-    count = (muscle.node_count - 1) * sections_per_segment(muscle.node_count) + 1
-    points, axes = path.centreline(flexion, count)
-    lean = best_lean(points, axes, muscle.radii, *spheres) if beside else 0.0
-    offsets = path_offsets(points, axes, muscle.radii, *spheres, lean=lean)
-    sections = np.interp(np.linspace(0.0, 1.0, count),
-                         np.linspace(0.0, 1.0, muscle.node_count), muscle.radii)
+    ``spheres`` (centres (k, 3), radii (k,)); if it lies beside other muscles, turned by
+    ``lean`` (radians, `arm_leans`) to its side of them and bowed out once (None: it lies
+    on bare bone). Also its sections as spheres, which the muscles laid after it keep
+    clear of. A straight path's sections stay parallel, so the mesh keeps the muscle's
+    volume exactly (``engine/mesh.py``)."""
+    points, axes = centreline(muscle, path, flexion)
+    offsets = laid_offsets(muscle, points, axes, spheres, lean)
     if path.wraps(flexion):
         mesh = bent_muscle_mesh(muscle.radii, points + offsets, axes, segments)
     else:
         mesh = muscle_mesh(muscle.radii, muscle.length, points[0], points[-1], segments,
                            offsets=offsets)
-    return mesh, (points + offsets, sections)
+    return mesh, (points + offsets, section_radii(muscle, len(points)))
 
 
 def tendon_share(muscle: Muscle, path: MusclePath, flexion: float, mesh: Mesh) -> np.ndarray:

@@ -18,9 +18,11 @@ needs) so the muscle leans no steeper than ``SLOPE``. The tendons' last centimet
 end, which is where they hold on to their bone, is left where it is.
 
 A muscle laid over others (``engine/anatomy.py``) is moved the same way along a direction
-turned round its axis, towards its own side of the arm (`best_lean`), so that the elbow's
-muscles pack round the humerus instead of stacking in the plane of the bend; the turn fades
-to nothing at the elbow, where the heads of a muscle meet on one tendon.
+turned round its axis, towards its own side of the arm (`best_lean`), the same all along
+it, so that the elbow's muscles pack round the humerus instead of stacking in the plane of
+the bend, and each bows out once, to one side, instead of winding round the bone. Where a
+path bends round the elbow, its sections move only across the plane of the bend, which
+keeps the volume there too (`path_offsets`).
 """
 
 from __future__ import annotations
@@ -40,7 +42,7 @@ HOLD = 1.0  # cm at either end where the tendon holds on to its bone and does no
 LEANS = np.radians(np.arange(0.0, 80.5, 10.0))
 """The leans a muscle laid over others may take (see `best_lean`), straight first: up to 80
 degrees round from straight away from the elbow, towards its side of the arm."""
-SPREAD = 8.0  # cm from the elbow's centre at which a muscle takes its whole lean
+TURN = 3.0  # cm before a bend over which a leaning muscle's moves turn across the bend
 _ROUNDS = 24  # passes over the intervals; each lifts a section past one more bone
 
 
@@ -76,30 +78,67 @@ def section_offsets(start, end, radii, centres, sphere_radii,
                         radii, centres, sphere_radii)
 
 
-def path_offsets(points, axes, radii, centres, sphere_radii, lean: float = 0.0) -> np.ndarray:
+def path_offsets(points, axes, radii, centres, sphere_radii, lean: float = 0.0,
+                 one_bulge: bool = False) -> np.ndarray:
     """The sideways moves (m, 3) of m sections centred at ``points`` (m, 3), equally spaced
     along a path (straight, or bent round the elbow), each in the plane across its unit
     ``axes`` (m, 3), that keep the muscle of node ``radii`` (n,) clear of the spheres; m - 1
     is a multiple of n - 1. ``lean`` (radians) turns the direction of the moves about each
-    section's axis, from straight away from the elbow towards the muscle's side.
+    section's axis, from straight away from the elbow towards the arm's outside (``+z``;
+    negative: its inside), the same all along the muscle, so that it bulges to one side
+    and never winds round the bone.
 
-    Only sections on a straight stretch move: there the planes are parallel, so the volume
-    does not change (Cavalieri). Where the path bends, moving a section away from the bend
-    would lengthen the tube and grow its volume (Pappus), so the sections whose plane is
-    not parallel to a neighbour's stay, and the moves ease off towards them at ``SLOPE``.
+    On a straight stretch the planes are parallel, so any move keeps the volume
+    (Cavalieri). Where the path bends round the elbow, a section moved away from the bend
+    or towards it would lengthen or shorten the tube there and change its volume (Pappus),
+    so a bent section moves only along the bend's binormal, across the plane of the bend:
+    the lean turns to a quarter within ``TURN`` cm of the bend, and what is left of the
+    move in the bend's plane eases off towards it at ``SLOPE``.
+
+    With ``one_bulge`` (a muscle laid over others) the moves rise to their largest and fall
+    from it, never dipping between two humps, so that the muscle bows out once, in one
+    direction, and never snakes (a dip between the humeral head and the belly would bend
+    it in and out again).
     """
-    side = _leaning(_sides(points, axes), axes, lean * _spread(points))
+    leans = _bend_leans(points, axes, lean)
+    way = _leaning(_sides(points, axes), axes, leans)
     radius = np.interp(np.linspace(0.0, 1.0, len(points)), np.linspace(0.0, 1.0, len(radii)),
                        radii)
-    shift = _least_shifts(points, radius, axes, side, centres, sphere_radii)
-    return _smoothed(points, axes, shift)[:, None] * side
+    shift = _least_shifts(points, radius, axes, way, centres, sphere_radii)
+    return _smoothed(points, axes, shift, np.abs(np.cos(leans)), one_bulge)[:, None] * way
 
 
-def _smoothed(points, axes, shift) -> np.ndarray:
+def _along(points: np.ndarray) -> np.ndarray:
+    """(m,) each point's distance along the path through ``points`` (m, 3) from the first."""
+    return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+
+
+def _from_bend(points, axes) -> np.ndarray | None:
+    """(m,) each section's distance along the path from the nearest bent one (`_bends`), or
+    None for a straight path."""
+    bent = np.flatnonzero(_bends(axes))
+    if not bent.size:
+        return None
+    along = _along(points)
+    return np.min(np.abs(along[:, None] - along[bent][None, :]), axis=1)
+
+
+def _bend_leans(points, axes, lean: float) -> np.ndarray:
+    """(m,) each section's lean: the muscle's ``lean``, turned to a quarter (the bend's
+    binormal, on the same side) over the last ``TURN`` cm before a bend."""
+    leans = np.full(len(points), float(lean))
+    near = _from_bend(points, axes) if lean else None
+    if near is None:
+        return leans
+    share = np.clip(1.0 - near / TURN, 0.0, 1.0)
+    return leans + (np.copysign(np.pi / 2, lean) - leans) * share
+
+
+def _smoothed(points, axes, shift, across=None, one_bulge: bool = False) -> np.ndarray:
     """(m,) how far the sections (centred at ``points``, across ``axes`` (m, 3)) move, given
-    the least moves (m,) that clear them (see `path_offsets`)."""
-    steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
-    along = np.concatenate([[0.0], np.cumsum(steps)])
+    the least moves (m,) that clear them (see `path_offsets`); ``across`` (m,) is the share
+    of each move that lies in the plane of a bend (all of it if None)."""
+    along = _along(points)
     length = along[-1]
     shift = shift.copy()
     shift[(along < HOLD) | (along > length - HOLD)] = 0.0
@@ -109,57 +148,69 @@ def _smoothed(points, axes, shift) -> np.ndarray:
     rising = np.maximum.accumulate(shift + SLOPE * along) - SLOPE * along
     falling = (np.maximum.accumulate((shift - SLOPE * along)[::-1]) + SLOPE * along[::-1])[::-1]
     smooth = np.maximum(rising, falling)
+    if one_bulge:  # each valley filled up to the lower of the highest moves either side
+        smooth = np.minimum(np.maximum.accumulate(smooth),
+                            np.maximum.accumulate(smooth[::-1])[::-1])
     smooth[[0, -1]] = 0.0  # the attachments themselves stay on the bone
-    bent = np.flatnonzero(_bends(axes))
-    if bent.size:
-        nearest = np.min(np.abs(along[:, None] - along[bent][None, :]), axis=1)
-        smooth = np.minimum(smooth, SLOPE * nearest)
+    near = _from_bend(points, axes)
+    if near is not None:
+        across = np.ones(len(points)) if across is None else across
+        with np.errstate(divide="ignore"):
+            smooth = np.minimum(smooth, np.where(across > 1e-9, SLOPE * near / across, np.inf))
     return smooth
 
 
-def best_lean(points, axes, radii, centres, sphere_radii) -> float:
-    """Of :data:`LEANS`, the lean (radians, see `path_offsets`; the sections ``points`` and
-    ``axes`` (m, 3) as there) that keeps the muscle closest round the humerus: turned
-    towards the side of the arm its line lies on, so that it lies beside the muscles laid
-    before it and never crosses over as the elbow moves, the one whose sections reach
-    least far from the humerus's axis (the world's ``y``) above the elbow, to a millimetre,
-    the straighter of two that tie. A path bent round the elbow does not lean: its sections
-    near the bend cannot move (`path_offsets`), and leaning, they would fall short of
-    clearing the muscles there."""
-    if _bends(axes).any():
-        return 0.0
+def lean_reaches(points, axes, radii, centres, sphere_radii) -> tuple[np.ndarray, np.ndarray]:
+    """Each lean of :data:`LEANS` (radians, see `path_offsets`), turned towards the side of
+    the arm the muscle's line lies on (the outside for a line whose sections lie outside
+    the elbow's middle on the whole, ``z >= 0``), and how far the muscle would reach from
+    the humerus's axis (the world's ``y``) above the elbow, so leaning (cm): (k,) each.
+    The sections ``points`` and ``axes`` (m, 3) and the rest as in `path_offsets`."""
     # Judged on the nodes' sections alone (64 at most), which the spheres cut once for all
-    # the leans: the lean is one number, and the muscle is laid at every pose.
+    # the leans.
     nodes = np.linspace(0, len(points) - 1, min(len(radii), 64)).round().astype(int)
     points, axes = points[nodes], axes[nodes]
     radii = np.interp(np.linspace(0.0, 1.0, len(nodes)), np.linspace(0.0, 1.0, len(radii)), radii)
-    sides, spread = _sides(points, axes), _spread(points)
+    sides = _sides(points, axes)
     cuts = _cuts(points, radii, axes, centres, sphere_radii)
-    above = points[:, 1] > 0.0 if np.any(points[:, 1] > 0.0) else np.ones(len(points), bool)
     leans = LEANS * (1.0 if points[:, 2].mean() >= 0.0 else -1.0)
     reaches = []
     for lean in leans:
-        way = _leaning(sides, axes, lean * spread)
-        moved = points + _smoothed(points, axes, _shifts(*cuts, way, len(points)))[:, None] * way
-        reaches.append(np.max((np.hypot(moved[:, 0], moved[:, 2]) + radii)[above]))
-    return float(leans[np.lexsort((np.abs(leans), np.round(reaches, 1)))[0]])
+        turns = _bend_leans(points, axes, lean)
+        way = _leaning(sides, axes, turns)
+        shift = _smoothed(points, axes, _shifts(*cuts, way, len(points)), np.abs(np.cos(turns)),
+                          one_bulge=True)
+        reaches.append(reach(points + shift[:, None] * way, radii))
+    return leans, np.array(reaches)
 
 
-def _spread(points: np.ndarray) -> np.ndarray:
-    """(m,) how far the sections centred at ``points`` (m, 3) take their muscle's lean:
-    none at the elbow, where the heads of a muscle join one tendon (the triceps' on the
-    olecranon, the biceps' to the radius), all of it from ``SPREAD`` cm away."""
-    return np.clip(np.linalg.norm(points, axis=1) / SPREAD, 0.0, 1.0)
+def best_lean(leans: np.ndarray, reaches: np.ndarray, bound: float = 0.0) -> float:
+    """Of ``leans`` (k,), the one whose ``reaches`` (k,) (see `lean_reaches`) is least, to
+    a millimetre, counting none as less than ``bound`` (cm, how far the muscles laid before
+    it reach already), the most turned of those that tie: so that the muscle keeps closest
+    round the humerus, beside the muscles laid before it, and turns as far to its own side
+    as it can without the arm reaching farther, leaving the middle to those laid over it."""
+    return float(leans[np.lexsort((-np.abs(leans), np.round(np.maximum(reaches, bound), 1)))[0]])
+
+
+def reach(centres: np.ndarray, radii: np.ndarray) -> float:
+    """How far the sections (centres (m, 3), radii (m,)) reach from the humerus's axis (the
+    world's ``y``) above the elbow (cm); 0 if none lies above it."""
+    above = centres[:, 1] > 0.0
+    return float(np.max(np.hypot(centres[above, 0], centres[above, 2]) + radii[above],
+                        initial=0.0))
 
 
 def _leaning(sides: np.ndarray, axes: np.ndarray, lean) -> np.ndarray:
     """(m, 3) the unit ``sides`` (m, 3) turned about the unit ``axes`` by ``lean`` radians,
-    one for all or (m,) one each."""
+    one for all or (m,) one each, towards the arm's outside (``+z``) for a positive lean."""
     lean = np.asarray(lean, dtype=np.float64)
     if not lean.any():
         return sides
     lean = np.broadcast_to(lean, len(sides))[:, None]
-    return np.cos(lean) * sides + np.sin(lean) * np.cross(axes, sides)
+    turned = np.cross(axes, sides)
+    turned *= np.where(turned[:, 2:] < 0.0, -1.0, 1.0)
+    return np.cos(lean) * sides + np.sin(lean) * turned
 
 
 def _bends(axes: np.ndarray) -> np.ndarray:

@@ -96,6 +96,51 @@ def test_a_leaning_section_moves_sideways_just_clear_of_a_bone_in_its_way():
     np.testing.assert_allclose(offsets[2], [0.0, 0.0, 3.0 + GAP], atol=1e-6)
 
 
+def _round_the_elbow(radius: float = 2.0, step: float = 0.25):
+    """Sections down the back of an upper arm (x = -radius, from y = 10) and a quarter
+    round the elbow's axis z at ``radius``: centres and unit axes (m, 3), and which are on
+    the bend."""
+    down = np.arange(10.0, 0.0, -step)
+    straight = np.column_stack([np.full(len(down), -radius), down, np.zeros(len(down))])
+    angles = np.linspace(np.pi, 1.5 * np.pi, round(0.5 * np.pi * radius / step) + 1)
+    arc = radius * np.column_stack([np.cos(angles), np.sin(angles), np.zeros(len(angles))])
+    ways = np.column_stack([-np.sin(angles), np.cos(angles), np.zeros(len(angles))])
+    points = np.concatenate([straight, arc])
+    axes = np.concatenate([np.tile([0.0, -1.0, 0.0], (len(down), 1)), ways])
+    return points, axes, np.arange(len(points)) > len(down)
+
+
+def test_a_leaning_muscle_moves_across_the_plane_of_a_bend_and_keeps_its_volume():
+    # A ball on the bend: the sections there cannot move in the bend's plane (that would
+    # change the tube's volume, Pappus), but across it, along z, they can, as far as clears.
+    points, axes, bent = _round_the_elbow()
+    ball = points[bent][len(points[bent]) // 2]
+    offsets = path_offsets(points, axes, np.array([0.5, 0.5]), ball[None, :], np.array([0.5]),
+                           lean=math.radians(40.0))
+    assert np.abs(offsets[bent][:, :2]).max() < 1e-12
+    assert np.abs(offsets[bent][:, 2]).max() == pytest.approx(0.5 + 0.5 + GAP, abs=1e-6)
+    assert np.all(offsets[:, 2] >= 0.0)  # a positive lean turns to the arm's outside, +z
+    upright = path_offsets(points, axes, np.array([0.5, 0.5]), ball[None, :], np.array([0.5]))
+    assert np.all(upright[bent] == 0.0)  # not leaning, the bend stays where it is
+
+
+def test_a_muscle_laid_over_others_bows_out_once_over_two_humps():
+    # Two balls on the muscle's line, 10 cm apart: laid over others, the muscle does not
+    # dip between them (an S seen from the side), it bows out once.
+    points = np.column_stack([np.full(41, 1e-9), np.linspace(20.0, 0.0, 41), np.zeros(41)])
+    axes = np.tile([0.0, -1.0, 0.0], (41, 1))
+    balls, sizes = np.array([[0.0, 15.0, 0.0], [0.0, 5.0, 0.0]]), np.array([2.0, 1.5])
+    radii = np.array([1.0, 1.0])
+    dipping = path_offsets(points, axes, radii, balls, sizes)[:, 0]
+    bowed = path_offsets(points, axes, radii, balls, sizes, one_bulge=True)[:, 0]
+    middle = 20  # y = 10, halfway between the balls
+    assert dipping[middle] < 1.0 + 1.5 + GAP - 0.5  # left alone, it dips between them
+    assert bowed[middle] == pytest.approx(1.0 + 1.5 + GAP, abs=1e-6)
+    assert np.all(bowed >= dipping - 1e-12)
+    peak = int(np.argmax(bowed))
+    assert np.all(np.diff(bowed[:peak + 1]) >= 0.0) and np.all(np.diff(bowed[peak:]) <= 0.0)
+
+
 def test_tendons_are_the_nodes_that_do_not_grow(default_arm):
     parts = arm_parts(default_arm, SEGMENTS)
     share = tendon_share(default_arm.muscle, default_arm.paths[0], default_arm.flexion,
