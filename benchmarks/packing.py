@@ -1,0 +1,81 @@
+"""What laying the six muscles of configs/elbow.toml costs: a contraction step's scene mesh
+(what a held ``c`` costs before the picture is drawn), and the first mesh after an edit of
+a muscle's node (when the muscles' leans round the humerus are chosen anew), against the
+same two for the single biceps of configs/biceps.toml; optionally against another tree.
+
+    .venv/bin/python benchmarks/packing.py [--runs N] [--against PYTHON]
+
+``--against`` names the Python of another installation of biceps (a checkout of main with
+its own venv, say): the same measures are taken there too, in turns with this one's, so
+that both see the same load on a busy machine. Each figure is the median over the runs of
+the median of ``STEPS`` meshes, in ms CPU time of this process (load from other processes
+disturbs it less than wall time).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import time
+
+MODELS = ("biceps", "elbow")  # the bundled configs/biceps.toml and configs/elbow.toml
+STEPS = 15
+
+
+def measure() -> dict[str, float]:
+    """One run here: {what model: median ms} for a step and for an edit's first mesh."""
+    from biceps.configs import FOLDER
+    from biceps.engine.config import load_config
+    from biceps.engine.scene import scene_mesh
+
+    figures = {}
+    for name in MODELS:
+        config = load_config(FOLDER / f"{name}.toml")
+        arm = config.arm.at_flexion(60.0)
+        scene_mesh(arm, config.render)  # the modules loaded, any cache filled
+        steps, edits = [], []
+        for i in range(STEPS):
+            start = time.process_time()
+            scene_mesh(arm.stepped(-0.1 * (i % 5 + 1))[0], config.render)
+            steps.append(time.process_time() - start)
+            edited = arm.with_muscle(arm.muscle.with_radius(5, arm.muscle.radii[5] + 0.001 * (i + 1)))
+            start = time.process_time()
+            scene_mesh(edited, config.render)
+            edits.append(time.process_time() - start)
+        figures[f"step {name}"] = 1000 * statistics.median(steps)
+        figures[f"edit {name}"] = 1000 * statistics.median(edits)
+    return figures
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--against", help="the Python of another installation of biceps")
+    parser.add_argument("--one-run", action="store_true", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.one_run:
+        print(json.dumps(measure()))
+        return
+    pythons = {"this tree": sys.executable}
+    if args.against:
+        pythons["against"] = args.against
+    runs: dict[str, list[dict[str, float]]] = {tree: [] for tree in pythons}
+    for _ in range(args.runs):
+        for tree, python in pythons.items():
+            out = subprocess.run([python, __file__, "--one-run"], check=True,
+                                 capture_output=True, text=True).stdout
+            runs[tree].append(json.loads(out.splitlines()[-1]))
+    whats = list(runs["this tree"][0])
+    print(f"median of {args.runs} runs, ms CPU per mesh" + "".join(f"{t:>12}" for t in pythons)
+          + ("    ratio" if args.against else ""))
+    for what in whats:
+        medians = [statistics.median(run[what] for run in runs[tree]) for tree in pythons]
+        ratio = f"{medians[0] / medians[1]:>9.2f}" if args.against else ""
+        print(f"{what:<34}" + "".join(f"{m:>12.2f}" for m in medians) + ratio)
+
+
+if __name__ == "__main__":
+    main()
