@@ -69,6 +69,9 @@ class _Shapes:
 
 @lru_cache(maxsize=16)
 def _chosen_leans(shapes: _Shapes) -> tuple[float | None, ...]:
+    """`arm_leans` for an arm's shapes: each muscle in `laying_order` laid at each judged
+    pose over those before it, with the lean whose worst reach there is least (`best_lean`,
+    bounded by how far the muscles before it reach already)."""
     arm = shapes.arm
     poses = [arm.at_length(length) for length in np.linspace(*arm.length_range(), JUDGED_POSES)]
     spheres = [bone_spheres(pose.skeleton, pose.pose) for pose in poses]
