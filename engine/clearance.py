@@ -100,12 +100,15 @@ def path_offsets(points, axes, radii, centres, sphere_radii, lean: float = 0.0,
     direction, and never snakes (a dip between the humeral head and the belly would bend
     it in and out again).
     """
-    leans = _bend_leans(points, axes, lean)
-    way = _leaning(_sides(points, axes), axes, leans)
+    along = _along(points)
+    near = _from_bend(along, axes)
+    leans = _bend_leans(near, len(points), lean)
+    sides = _sides(points, axes)
+    way = _leaning(sides, _turned(sides, axes), leans) if leans.any() else sides
     radius = np.interp(np.linspace(0.0, 1.0, len(points)), np.linspace(0.0, 1.0, len(radii)),
                        radii)
     shift = _least_shifts(points, radius, axes, way, centres, sphere_radii)
-    return _smoothed(points, axes, shift, np.abs(np.cos(leans)), one_bulge)[:, None] * way
+    return _smoothed(along, near, shift, np.abs(np.cos(leans)), one_bulge)[:, None] * way
 
 
 def _along(points: np.ndarray) -> np.ndarray:
@@ -113,32 +116,32 @@ def _along(points: np.ndarray) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
 
 
-def _from_bend(points, axes) -> np.ndarray | None:
-    """(m,) each section's distance along the path from the nearest bent one (`_bends`), or
-    None for a straight path."""
+def _from_bend(along: np.ndarray, axes: np.ndarray) -> np.ndarray | None:
+    """(m,) each section's distance along the path from the nearest bent one (`_bends`),
+    given their places ``along`` it (m,) and unit ``axes`` (m, 3); None for a straight
+    path."""
     bent = np.flatnonzero(_bends(axes))
     if not bent.size:
         return None
-    along = _along(points)
     return np.min(np.abs(along[:, None] - along[bent][None, :]), axis=1)
 
 
-def _bend_leans(points, axes, lean: float) -> np.ndarray:
-    """(m,) each section's lean: the muscle's ``lean``, turned to a quarter (the bend's
-    binormal, on the same side) over the last ``TURN`` cm before a bend."""
-    leans = np.full(len(points), float(lean))
-    near = _from_bend(points, axes) if lean else None
-    if near is None:
+def _bend_leans(near: np.ndarray | None, count: int, lean: float) -> np.ndarray:
+    """(count,) each section's lean: the muscle's ``lean``, turned to a quarter (the bend's
+    binormal, on the same side) over the last ``TURN`` cm before a bend (``near``: see
+    `_from_bend`)."""
+    leans = np.full(count, float(lean))
+    if near is None or not lean:
         return leans
     share = np.clip(1.0 - near / TURN, 0.0, 1.0)
     return leans + (np.copysign(np.pi / 2, lean) - leans) * share
 
 
-def _smoothed(points, axes, shift, across=None, one_bulge: bool = False) -> np.ndarray:
-    """(m,) how far the sections (centred at ``points``, across ``axes`` (m, 3)) move, given
-    the least moves (m,) that clear them (see `path_offsets`); ``across`` (m,) is the share
-    of each move that lies in the plane of a bend (all of it if None)."""
-    along = _along(points)
+def _smoothed(along, near, shift, across=None, one_bulge: bool = False) -> np.ndarray:
+    """(m,) how far the sections move, given their places ``along`` the path (m,), their
+    distances from a bend (``near``, see `_from_bend`) and the least moves (m,) that clear
+    them (see `path_offsets`); ``across`` (m,) is the share of each move that lies in the
+    plane of a bend (all of it if None)."""
     length = along[-1]
     shift = shift.copy()
     shift[(along < HOLD) | (along > length - HOLD)] = 0.0
@@ -152,7 +155,6 @@ def _smoothed(points, axes, shift, across=None, one_bulge: bool = False) -> np.n
         smooth = np.minimum(np.maximum.accumulate(smooth),
                             np.maximum.accumulate(smooth[::-1])[::-1])
     smooth[[0, -1]] = 0.0  # the attachments themselves stay on the bone
-    near = _from_bend(points, axes)
     if near is not None:
         across = np.ones(len(points)) if across is None else across
         with np.errstate(divide="ignore"):
@@ -172,13 +174,16 @@ def lean_reaches(points, axes, radii, centres, sphere_radii) -> tuple[np.ndarray
     points, axes = points[nodes], axes[nodes]
     radii = np.interp(np.linspace(0.0, 1.0, len(nodes)), np.linspace(0.0, 1.0, len(radii)), radii)
     sides = _sides(points, axes)
+    turned = _turned(sides, axes)
+    along = _along(points)
+    near = _from_bend(along, axes)
     cuts = _cuts(points, radii, axes, centres, sphere_radii)
     leans = LEANS * (1.0 if points[:, 2].mean() >= 0.0 else -1.0)
     reaches = []
     for lean in leans:
-        turns = _bend_leans(points, axes, lean)
-        way = _leaning(sides, axes, turns)
-        shift = _smoothed(points, axes, _shifts(*cuts, way, len(points)), np.abs(np.cos(turns)),
+        turns = _bend_leans(near, len(points), lean)
+        way = _leaning(sides, turned, turns)
+        shift = _smoothed(along, near, _shifts(*cuts, way, len(points)), np.abs(np.cos(turns)),
                           one_bulge=True)
         reaches.append(reach(points + shift[:, None] * way, radii))
     return leans, np.array(reaches)
@@ -201,15 +206,21 @@ def reach(centres: np.ndarray, radii: np.ndarray) -> float:
                         initial=0.0))
 
 
-def _leaning(sides: np.ndarray, axes: np.ndarray, lean) -> np.ndarray:
-    """(m, 3) the unit ``sides`` (m, 3) turned about the unit ``axes`` by ``lean`` radians,
-    one for all or (m,) one each, towards the arm's outside (``+z``) for a positive lean."""
+def _turned(sides: np.ndarray, axes: np.ndarray) -> np.ndarray:
+    """(m, 3) the unit ``sides`` (m, 3) turned a quarter about the unit ``axes``, towards
+    the arm's outside (``+z``)."""
+    turned = np.cross(axes, sides)
+    return turned * np.where(turned[:, 2:] < 0.0, -1.0, 1.0)
+
+
+def _leaning(sides: np.ndarray, turned: np.ndarray, lean) -> np.ndarray:
+    """(m, 3) the unit ``sides`` (m, 3) turned about their sections' axes by ``lean``
+    radians, one for all or (m,) one each, towards ``turned`` (`_turned`) for a positive
+    lean."""
     lean = np.asarray(lean, dtype=np.float64)
     if not lean.any():
         return sides
     lean = np.broadcast_to(lean, len(sides))[:, None]
-    turned = np.cross(axes, sides)
-    turned *= np.where(turned[:, 2:] < 0.0, -1.0, 1.0)
     return np.cos(lean) * sides + np.sin(lean) * turned
 
 
