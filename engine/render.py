@@ -202,9 +202,12 @@ class Renderer:
         out_attributes = np.empty((attributes.shape[0], room))
         out_triangles = np.empty((room, 3), np.int32)
         counts = np.zeros(2, np.int64)
+        polygon = np.empty((2, raster.MAX_POLYGON, 4 + attributes.shape[0]))
+        source = np.empty((2, raster.MAX_POLYGON), np.int64)
         raster.clip_triangles(triangles, self._clip, self._screen_xy, self._screen_z,
                               self._screen_q, self._outcodes, attributes, width, height, out_xy,
-                              out_z, out_q, out_attributes, out_triangles, counts)
+                              out_z, out_q, out_attributes, out_triangles, counts, polygon,
+                              source)
         inside = np.zeros(room, np.uint8)  # every outcode 0: the clipper did its work
         return (_read_only(out_triangles[:counts[1]]), out_xy, out_z, out_q, inside,
                 out_attributes)

@@ -97,7 +97,8 @@ def _clip_polygon(polygon, source, slot, n, plane, gx, gy):
 
 @ngjit
 def clip_triangles(triangles, clip, screen_xy, screen_z, screen_q, outcodes, attributes, width,
-                   height, out_xy, out_z, out_q, out_attributes, out_triangles, counts):
+                   height, out_xy, out_z, out_q, out_attributes, out_triangles, counts, polygon,
+                   source):
     """Clip the triangles that cross a clipping plane (but are not wholly outside one) and
     write what is left of them as a mesh for the rasterize kernels.
 
@@ -108,12 +109,11 @@ def clip_triangles(triangles, clip, screen_xy, screen_z, screen_q, outcodes, att
     ``MAX_POLYGON`` vertices and ``MAX_POLYGON - 2`` triangles per triangle to clip, and
     counts: (2,) int64, the vertices and triangles written. Each clipped triangle leaves a
     convex polygon, drawn as a fan (the near plane alone leaves a triangle or a
-    quadrilateral).
+    quadrilateral). polygon: (2, MAX_POLYGON, 4 + a) float64 and source: (2, MAX_POLYGON)
+    int64, scratch (`_clip_polygon`), passed in as every kernel's is (``engine/jit.py``).
     """
     gx, gy = _guard(width), _guard(height)
     a = attributes.shape[0]
-    polygon = np.empty((2, MAX_POLYGON, 4 + a))
-    source = np.empty((2, MAX_POLYGON), np.int64)
     vertex_count = triangle_count = 0
     for t in range(triangles.shape[0]):
         spill, inside = 0, 0xFF
