@@ -122,15 +122,17 @@ def band_spans(x0, y0, x1, y1, x2, y2, width, band_start, band_end, span_lo, spa
     a0, d0, q0, r0, dq0, dr0 = _edge_walker(x0, y0, x1, y1, first)
     a1, d1, q1, r1, dq1, dr1 = _edge_walker(x1, y1, x2, y2, first)
     a2, d2, q2, r2, dq2, dr2 = _edge_walker(x2, y2, x0, y0, first)
+    covered = False
     for y in range(first, last + 1):
         lo, hi = _edge_clamp(a0, q0, left, right)
         lo, hi = _edge_clamp(a1, q1, lo, hi)
         lo, hi = _edge_clamp(a2, q2, lo, hi)
         span_lo[y], span_hi[y] = lo, (hi + 1 if hi >= lo else lo)
+        covered |= hi >= lo
         q0, r0 = _edge_step(d0, q0, r0, dq0, dr0)
         q1, r1 = _edge_step(d1, q1, r1, dq1, dr1)
         q2, r2 = _edge_step(d2, q2, r2, dq2, dr2)
-    return first, last + 1
+    return (first, last + 1) if covered else (first, first)
 
 
 @inline

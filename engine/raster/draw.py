@@ -86,18 +86,19 @@ def _cover(i0, i1, i2, perspective, screen_xy, screen_z, screen_q, attributes, w
     x2, y2 = screen_xy[0, i2], screen_xy[1, i2]
     first, end = band_spans(x0, y0, x1, y1, x2, y2, width, band_start, band_end, span_lo,
                             span_hi)
-    # Plane equations in pixels, through the snapped positions the coverage used.
-    e1x, e1y = (x1 - x0) / ONE, (y1 - y0) / ONE
-    e2x, e2y = (x2 - x0) / ONE, (y2 - y0) / ONE
-    inv_det = 1.0 / (e1x * e2y - e1y * e2x)
-    fx, fy = x0 / ONE, y0 / ONE
-    q0, q1, q2 = (screen_q[i0], screen_q[i1], screen_q[i2]) if perspective else (1.0, 1.0, 1.0)
-    _set_plane(planes, 0, fx, fy, e1x, e1y, e2x, e2y, inv_det, screen_z[i0], screen_z[i1],
-               screen_z[i2])
-    _set_plane(planes, 1, fx, fy, e1x, e1y, e2x, e2y, inv_det, q0, q1, q2)
-    for k in range(attributes.shape[0]):
-        _set_plane(planes, 2 + k, fx, fy, e1x, e1y, e2x, e2y, inv_det, attributes[k, i0] * q0,
-                   attributes[k, i1] * q1, attributes[k, i2] * q2)
+    if first < end:
+        # Plane equations in pixels, through the snapped positions the coverage used.
+        e1x, e1y = (x1 - x0) / ONE, (y1 - y0) / ONE
+        e2x, e2y = (x2 - x0) / ONE, (y2 - y0) / ONE
+        inv_det = 1.0 / (e1x * e2y - e1y * e2x)
+        fx, fy = x0 / ONE, y0 / ONE
+        q0, q1, q2 = (screen_q[i0], screen_q[i1], screen_q[i2]) if perspective else (1.0, 1.0, 1.0)
+        _set_plane(planes, 0, fx, fy, e1x, e1y, e2x, e2y, inv_det, screen_z[i0], screen_z[i1],
+                   screen_z[i2])
+        _set_plane(planes, 1, fx, fy, e1x, e1y, e2x, e2y, inv_det, q0, q1, q2)
+        for k in range(attributes.shape[0]):
+            _set_plane(planes, 2 + k, fx, fy, e1x, e1y, e2x, e2y, inv_det, attributes[k, i0] * q0,
+                       attributes[k, i1] * q1, attributes[k, i2] * q2)
     return first, end
 
 
