@@ -161,7 +161,7 @@ class Renderer:
                                   np.asarray(light.position, dtype=np.float64),
                                   float(light.ambient), float(light.diffuse), attributes)
         elif shading == "phong":
-            raster.phong_vertices(self._world, self._world_normals, self._albedo, attributes)
+            raster.phong_vertices(self._albedo, attributes)
 
     def _attributes(self, shading: str) -> np.ndarray:
         """The buffer of what the rasterizer interpolates for ``shading``."""
@@ -230,15 +230,16 @@ class Renderer:
         self._vertices = np.empty((3, count))
         self._normals = np.empty((3, count))
         self._albedo = np.empty((3, count), np.float32)
-        self._world = np.empty((3, count))
-        self._world_normals = np.empty((3, count))
+        # World positions and normals are Phong's first attributes (`raster.phong_vertices`).
+        self._phong_attributes = np.empty((9, count))
+        self._world = self._phong_attributes[0:3]
+        self._world_normals = self._phong_attributes[3:6]
         self._clip = np.empty((4, count))
         self._screen_xy = np.empty((2, count), np.int64)
         self._screen_z = np.empty(count)
         self._screen_q = np.empty(count)
         self._outcodes = np.empty(count, np.uint8)
         self._colours = np.empty((3, count))
-        self._phong_attributes = np.empty((9, count))
         self._no_attributes = np.empty((0, count))
         self._vertex_count = count
 

@@ -129,14 +129,13 @@ def light_vertices(world, world_normals, albedo, light_position, ambient, diffus
 
 
 @ngjit
-def phong_vertices(world, world_normals, albedo, attributes):
-    """Phong's vertex attributes, interpolated per pixel and lit there.
-
-    world, world_normals: (3, n) float64. albedo: (3, n) float32 in [0, 1].
-    Writes attributes: (9, n) float64: position (3), normal (3), 255 albedo (3).
+def phong_vertices(albedo, attributes):
+    """Phong's vertex attributes, interpolated per pixel and lit there: attributes: (9, n)
+    float64, position (3), normal (3) and 255 albedo (3). The first six rows are the world
+    positions and normals themselves, as `transform_vertices` wrote them (the renderer
+    passes it views of those rows), so only the albedo is written here, from
+    albedo: (3, n) float32 in [0, 1]: copying the rest took a third of the vertex stage.
     """
     for c in range(3):
-        for i in range(world.shape[1]):
-            attributes[c, i] = world[c, i]
-            attributes[3 + c, i] = world_normals[c, i]
+        for i in range(albedo.shape[1]):
             attributes[6 + c, i] = 255.0 * albedo[c, i]
