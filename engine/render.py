@@ -21,8 +21,8 @@ RASTERIZERS = {
 that cover each pixel (with no depth test)."""
 
 PARALLEL_VERTICES = 16384
-"""Vertices from which projecting them and working out their attributes, each about 3 ns a
-vertex, pay for a second thread (tens of microseconds to hand over)."""
+"""Vertices from which the vertex stage, 8 to 11 ns a vertex, pays for more threads (tens
+of microseconds to hand each its share)."""
 
 
 class Renderer:
@@ -135,33 +135,34 @@ class Renderer:
 
     def _transform(self, shading, light, albedo, model, view_projection, width, height):
         """The vertex stage, from the vertices and normals copied in: world positions and
-        normals, then at once (two threads for a large mesh) clip space and screen positions,
-        and what the rasterizer interpolates for ``shading`` (returned: (a, n) float64)."""
-        np.copyto(self._albedo, np.asarray(albedo).T)
-        raster.transform_vertices(self._vertices, self._normals, model, _normal_matrix(model),
-                                  self._world, self._world_normals)
+        normals, clip space and screen positions, and what the rasterizer interpolates for
+        ``shading`` (returned: (a, n) float64); a large mesh's vertices shared among the
+        threads, each a range of them through every kernel."""
         attributes = self._attributes(shading)
-        steps = [
-            lambda: raster.project_vertices(self._world, view_projection, width, height,
-                                            self._clip, self._screen_xy, self._screen_z,
-                                            self._screen_q, self._outcodes),
-            lambda: self._vertex_attributes(shading, light, attributes),
-        ]
-        if self.threads > 1 and self._vertex_count >= PARALLEL_VERTICES:
-            run_all(steps)
-        else:
-            for step in steps:
-                step()
-        return attributes
+        normals = _normal_matrix(model)
+        position = np.asarray(light.position, dtype=np.float64)
+        albedo = np.asarray(albedo)
 
-    def _vertex_attributes(self, shading: str, light: Light, attributes: np.ndarray) -> None:
-        """Work out what the rasterizer interpolates for ``shading`` into ``attributes``."""
-        if shading == "gouraud":
-            raster.light_vertices(self._world, self._world_normals, self._albedo,
-                                  np.asarray(light.position, dtype=np.float64),
-                                  float(light.ambient), float(light.diffuse), attributes)
-        elif shading == "phong":
-            raster.phong_vertices(self._albedo, attributes)
+        def stage(first, end):
+            np.copyto(self._albedo[:, first:end], albedo[first:end].T)
+            raster.transform_vertices(self._vertices, self._normals, model, normals,
+                                      self._world, self._world_normals, first, end)
+            raster.project_vertices(self._world, view_projection, width, height, self._clip,
+                                    self._screen_xy, self._screen_z, self._screen_q,
+                                    self._outcodes, first, end)
+            if shading == "gouraud":
+                raster.light_vertices(self._world, self._world_normals, self._albedo, position,
+                                      float(light.ambient), float(light.diffuse), attributes,
+                                      first, end)
+            elif shading == "phong":
+                raster.phong_vertices(self._albedo, attributes, first, end)
+
+        count = self._vertex_count
+        parts = self.threads if count >= PARALLEL_VERTICES else 1
+        edges = [count * k // parts for k in range(parts + 1)]
+        run_all(lambda first=first, end=end: stage(first, end)
+                for first, end in zip(edges, edges[1:]))
+        return attributes
 
     def _attributes(self, shading: str) -> np.ndarray:
         """The buffer of what the rasterizer interpolates for ``shading``."""

@@ -49,6 +49,18 @@ def test_several_threads_draw_the_picture_one_thread_draws(name, threads):
     np.testing.assert_array_equal(drawn, expected)
 
 
+@pytest.mark.parametrize("name", ["gouraud", "phong", "phong close-up, clipped"])
+def test_threads_sharing_the_vertices_draw_the_picture_one_thread_draws(monkeypatch, name):
+    monkeypatch.setattr("biceps.engine.render.PARALLEL_VERTICES", 1)  # any mesh is shared
+    changes = SCENES[name]
+    scene = Scene.of(load_config(DEFAULT_CONFIG))
+    scene = scene.with_render(**changes.get("render", {})).with_view(**changes.get("view", {}))
+    expected = frame(scene, Renderer(threads=1), 301, 171)
+    drawn = frame(scene, Renderer(threads=3), 301, 171)
+    assert np.count_nonzero(expected) > 1000
+    np.testing.assert_array_equal(drawn, expected)
+
+
 def test_a_band_holds_exactly_the_spans_of_its_rows():
     triangle = (5 * 256 + 17, 3 * 256 + 5, 2 * 256 + 99, 40 * 256 + 200, 37 * 256 + 3, 29 * 256)
     whole_lo, whole_hi = np.zeros(48, np.int64), np.zeros(48, np.int64)

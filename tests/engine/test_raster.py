@@ -69,7 +69,7 @@ def draw_on_screen(points, triangles, width, height, *, colours=None,
     world[1] = 1.0 - 2.0 * points[:, 1] / height
     clip, xy = np.empty((4, n)), np.empty((2, n), np.int64)
     z, q, codes = np.empty(n), np.empty(n), np.empty(n, np.uint8)
-    raster.project_vertices(world, np.eye(4), width, height, clip, xy, z, q, codes)
+    raster.project_vertices(world, np.eye(4), width, height, clip, xy, z, q, codes, 0, n)
     attributes = np.empty((0, n)) if colours is None else np.ascontiguousarray(colours.T)
     colour = np.zeros((height, width, 3), np.uint8)
     depths = np.zeros(height * width, np.float32)  # the far plane
@@ -135,7 +135,7 @@ def test_projection_applies_the_viewport_and_snaps_to_a_256th_of_a_pixel():
     view_projection = camera.projection_matrix(1.5) @ camera.view_matrix()
     clip, xy = np.empty((4, 50)), np.empty((2, 50), np.int64)
     z, q, codes = np.empty(50), np.empty(50), np.empty(50, np.uint8)
-    raster.project_vertices(world, view_projection, 300, 200, clip, xy, z, q, codes)
+    raster.project_vertices(world, view_projection, 300, 200, clip, xy, z, q, codes, 0, 50)
     expected = transform_points(viewport(300, 200) @ view_projection, world.T)
     assert np.all(codes == 0)
     np.testing.assert_array_equal(xy.T, np.floor(expected[:, :2] * 256 + 0.5))
@@ -150,7 +150,7 @@ def test_outcodes_name_the_planes_a_vertex_is_outside():
                       [0.5, -0.5, 0.0]]).T
     clip, xy = np.empty((4, 5)), np.empty((2, 5), np.int64)
     z, q, codes = np.empty(5), np.empty(5), np.empty(5, np.uint8)
-    raster.project_vertices(world.copy(), np.eye(4), 64, 48, clip, xy, z, q, codes)
+    raster.project_vertices(world.copy(), np.eye(4), 64, 48, clip, xy, z, q, codes, 0, 5)
     assert codes.tolist() == [raster.NEAR, raster.FAR, raster.RIGHT, raster.INVALID, 0]
 
 
