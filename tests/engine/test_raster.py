@@ -201,6 +201,17 @@ def test_coverage_matches_the_reference_on_random_triangles(points):
     assert spans_set(triangle, 8, 8) == reference_coverage(triangle, 8, 8)
 
 
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.tuples(quarter_pixels(2, 5), quarter_pixels(2, 5)), min_size=3, max_size=3))
+def test_coverage_of_triangles_narrower_than_an_edge_walk_matches_the_reference(points):
+    # At most three pixel centres wide: covered by testing each centre (coverage.NARROW).
+    (x0, y0), (x1, y1), (x2, y2) = points
+    if (y1 - y0) * (x2 - x0) - (x1 - x0) * (y2 - y0) == 0:
+        return
+    triangle = [points[i] for i in front_facing(points, [0, 1, 2])[0]]
+    assert spans_set(triangle, 8, 8) == reference_coverage(triangle, 8, 8)
+
+
 def test_back_faces_and_degenerate_triangles_draw_nothing():
     points = [(1.0, 1.0), (1.0, 7.0), (7.0, 1.0), (4.0, 4.0), (2.0, 2.0)]
     back = front_facing(points, [0, 1, 2])[:, ::-1]
