@@ -67,6 +67,25 @@ def _edge_value(ax, ay, bx, by, px, py):
 
 
 @helper
+def _test_centres(x0, y0, x1, y1, x2, y2, first, last, left, right, span_lo, span_hi):
+    """The spans of a triangle (as in `band_spans`) on the rows first to last, from testing
+    each pixel centre of the columns left to right: whether it covers any. A helper, not
+    inlined by numba, which added a second to the first run's compilation."""
+    covered = False
+    for y in range(first, last + 1):
+        lo, hi = right + 1, left
+        for x in range(left, right + 1):
+            inside = (_edge_value(x0, y0, x1, y1, x, y) >= 0) \
+                & (_edge_value(x1, y1, x2, y2, x, y) >= 0) \
+                & (_edge_value(x2, y2, x0, y0, x, y) >= 0)
+            lo = x if inside & (x < lo) else lo
+            hi = x + 1 if inside else hi
+        span_lo[y], span_hi[y] = lo, (hi if hi > lo else lo)
+        covered |= hi > lo
+    return covered
+
+
+@helper
 def _edge_walker(ax, ay, bx, by, row):
     """The edge a -> b as a bound on the covered pixels' x, row by row.
 
@@ -136,19 +155,11 @@ def band_spans(x0, y0, x1, y1, x2, y2, width, band_start, band_end, span_lo, spa
     first = first if first > band_start else band_start
     if first > last or left > right:
         return first, first
-    covered = False
     if right - left < NARROW:
-        for y in range(first, last + 1):
-            lo, hi = right + 1, left
-            for x in range(left, right + 1):
-                inside = (_edge_value(x0, y0, x1, y1, x, y) >= 0) \
-                    & (_edge_value(x1, y1, x2, y2, x, y) >= 0) \
-                    & (_edge_value(x2, y2, x0, y0, x, y) >= 0)
-                lo = x if inside & (x < lo) else lo
-                hi = x + 1 if inside else hi
-            span_lo[y], span_hi[y] = lo, (hi if hi > lo else lo)
-            covered |= hi > lo
+        covered = _test_centres(x0, y0, x1, y1, x2, y2, first, last, left, right, span_lo,
+                                span_hi)
         return (first, last + 1) if covered else (first, first)
+    covered = False
     a0, d0, q0, r0, dq0, dr0 = _edge_walker(x0, y0, x1, y1, first)
     a1, d1, q1, r1, dq1, dr1 = _edge_walker(x1, y1, x2, y2, first)
     a2, d2, q2, r2, dq2, dr2 = _edge_walker(x2, y2, x0, y0, first)

@@ -71,46 +71,37 @@ def _drift(q0, q1, q2, attributes, i0, i1, i2):
 
 
 @inline
-def _cover(i0, i1, i2, perspective, screen_xy, screen_z, screen_q, attributes, width,
-           band_start, band_end, span_lo, span_hi, planes):
-    """The spans of the triangle of vertices i0, i1, i2 on the rows ``band_start <= y <
-    band_end``, and its planes: returns (first, end), the rows that may hold pixels.
+def _set_planes(i0, i1, i2, perspective, screen_xy, screen_z, screen_q, attributes, planes):
+    """The planes of the triangle of vertices i0, i1, i2, in pixels, through the snapped
+    positions the coverage used.
 
     screen_xy: (2, n) int64, screen_z: (n,) float64, screen_q: (n,) float64 (1 / w),
-    attributes: (a, n) float64. span_lo, span_hi: (height,) int64 and planes:
-    (>= 2 + a, 3) float64: scratch, written with the spans and with the planes of the
-    depth, of q = 1 / w and of each attribute times q (q taken as 1 unless ``perspective``).
+    attributes: (a, n) float64. planes: (>= 2 + a, 3) float64, scratch, written with the
+    planes of the depth, of q = 1 / w and of each attribute times q (q taken as 1 unless
+    ``perspective``).
     """
     x0, y0 = screen_xy[0, i0], screen_xy[1, i0]
-    x1, y1 = screen_xy[0, i1], screen_xy[1, i1]
-    x2, y2 = screen_xy[0, i2], screen_xy[1, i2]
-    first, end = band_spans(x0, y0, x1, y1, x2, y2, width, band_start, band_end, span_lo,
-                            span_hi)
-    if first < end:
-        # Plane equations in pixels, through the snapped positions the coverage used.
-        e1x, e1y = (x1 - x0) / ONE, (y1 - y0) / ONE
-        e2x, e2y = (x2 - x0) / ONE, (y2 - y0) / ONE
-        inv_det = 1.0 / (e1x * e2y - e1y * e2x)
-        fx, fy = x0 / ONE, y0 / ONE
-        q0, q1, q2 = (screen_q[i0], screen_q[i1], screen_q[i2]) if perspective else (1.0, 1.0, 1.0)
-        _set_plane(planes, 0, fx, fy, e1x, e1y, e2x, e2y, inv_det, screen_z[i0], screen_z[i1],
-                   screen_z[i2])
-        _set_plane(planes, 1, fx, fy, e1x, e1y, e2x, e2y, inv_det, q0, q1, q2)
-        for k in range(attributes.shape[0]):
-            _set_plane(planes, 2 + k, fx, fy, e1x, e1y, e2x, e2y, inv_det, attributes[k, i0] * q0,
-                       attributes[k, i1] * q1, attributes[k, i2] * q2)
-    return first, end
+    e1x, e1y = (screen_xy[0, i1] - x0) / ONE, (screen_xy[1, i1] - y0) / ONE
+    e2x, e2y = (screen_xy[0, i2] - x0) / ONE, (screen_xy[1, i2] - y0) / ONE
+    inv_det = 1.0 / (e1x * e2y - e1y * e2x)
+    fx, fy = x0 / ONE, y0 / ONE
+    q0, q1, q2 = (screen_q[i0], screen_q[i1], screen_q[i2]) if perspective else (1.0, 1.0, 1.0)
+    _set_plane(planes, 0, fx, fy, e1x, e1y, e2x, e2y, inv_det, screen_z[i0], screen_z[i1],
+               screen_z[i2])
+    _set_plane(planes, 1, fx, fy, e1x, e1y, e2x, e2y, inv_det, q0, q1, q2)
+    for k in range(attributes.shape[0]):
+        _set_plane(planes, 2 + k, fx, fy, e1x, e1y, e2x, e2y, inv_det, attributes[k, i0] * q0,
+                   attributes[k, i1] * q1, attributes[k, i2] * q2)
 
 
 @inline
 def _draw_triangle(shade, shade_on_screen, perspective, i0, i1, i2, screen_xy, screen_z,
-                   screen_q, attributes, lighting, pixels, depths, width, band_start, band_end,
+                   screen_q, attributes, lighting, pixels, depths, width, first, end,
                    span_lo, span_hi, planes, hits, shaded):
-    """Cover (`_cover`) and shade the triangle's rows in the band with the span shader
-    ``shade`` in ``perspective``, or else with ``shade_on_screen`` (the two may be the
-    same); hits, shaded: their scratch, unused by these."""
-    first, end = _cover(i0, i1, i2, perspective, screen_xy, screen_z, screen_q, attributes,
-                        width, band_start, band_end, span_lo, span_hi, planes)
+    """Shade the triangle's spans on the rows ``first <= y < end`` (`coverage.band_spans`)
+    with the span shader ``shade`` in ``perspective``, or else with ``shade_on_screen`` (the
+    two may be the same); hits, shaded: their scratch, unused by these."""
+    _set_planes(i0, i1, i2, perspective, screen_xy, screen_z, screen_q, attributes, planes)
     if perspective:
         for y in range(first, end):
             lo, hi = span_lo[y], span_hi[y]
@@ -128,15 +119,14 @@ def _draw_triangle(shade, shade_on_screen, perspective, i0, i1, i2, screen_xy, s
 
 @inline
 def _draw_triangle_lit(shade, light, i0, i1, i2, screen_xy, screen_z, screen_q, attributes,
-                       lighting, pixels, depths, width, band_start, band_end, span_lo, span_hi,
-                       planes, hits, shaded):
+                       lighting, pixels, depths, width, first, end, span_lo, span_hi, planes,
+                       hits, shaded):
     """`_draw_triangle` in perspective for a span shader that lists the pixels it passes
     in hits and shaded, and ``light``, which lights them all at once (Phong's, see
     ``engine/raster/shading.py``): when the list could overflow, and at the end. Apart from
     `_draw_triangle`, as the calls of even a ``light`` that does nothing made Gouraud's
     loop half as slow again."""
-    first, end = _cover(i0, i1, i2, True, screen_xy, screen_z, screen_q, attributes, width,
-                        band_start, band_end, span_lo, span_hi, planes)
+    _set_planes(i0, i1, i2, True, screen_xy, screen_z, screen_q, attributes, planes)
     # Where ``light`` steps from: the centre of the pixel nearest the first vertex on the
     # screen, the same in every band (so the picture is too) and never far from a pixel.
     column = screen_xy[0, i0] >> SUBPIXEL_BITS
@@ -200,19 +190,24 @@ def _rasterize(shade, on_screen, light, triangles, screen_xy, screen_z, screen_q
         if not (_in_band(screen_xy, i0, i1, i2, band_start, band_end)
                 and _visible(triangles, t, screen_xy, outcodes, width, height)):
             continue
+        first, end = band_spans(screen_xy[0, i0], screen_xy[1, i0], screen_xy[0, i1],
+                                screen_xy[1, i1], screen_xy[0, i2], screen_xy[1, i2], width,
+                                band_start, band_end, span_lo, span_hi)
+        if first >= end:
+            continue  # no pixel centre: most triangles of a fine mesh on a small picture
         if light is not None:
             _draw_triangle_lit(shade, light, i0, i1, i2, screen_xy, screen_z, screen_q,
-                               attributes, lighting, pixels, depths, width, band_start,
-                               band_end, span_lo, span_hi, planes, hits, shaded)
+                               attributes, lighting, pixels, depths, width, first, end,
+                               span_lo, span_hi, planes, hits, shaded)
         elif on_screen is None:
             _draw_triangle(shade, shade, True, i0, i1, i2, screen_xy, screen_z, screen_q,
-                           attributes, lighting, pixels, depths, width, band_start, band_end,
+                           attributes, lighting, pixels, depths, width, first, end,
                            span_lo, span_hi, planes, hits, shaded)
         else:
             deep = _drift(screen_q[i0], screen_q[i1], screen_q[i2], attributes, i0, i1, i2) \
                 >= AFFINE_BELOW
             _draw_triangle(shade, on_screen, deep, i0, i1, i2, screen_xy, screen_z, screen_q,
-                           attributes, lighting, pixels, depths, width, band_start, band_end,
+                           attributes, lighting, pixels, depths, width, first, end,
                            span_lo, span_hi, planes, hits, shaded)
 
 
