@@ -1,5 +1,6 @@
 """The software rasterizer: numba kernels that take arrays and scalars, write into output
-buffers and return nothing. ``engine/render.py`` calls them once each per frame:
+buffers and return nothing. ``engine/render.py`` calls them once each per frame (steps 1
+to 3 once per share of a large mesh's vertices, a thread each):
 
 1. ``vertex.transform_vertices``: model to world space, positions and (inverse-transpose)
    normals.
@@ -7,7 +8,7 @@ buffers and return nothing. ``engine/render.py`` calls them once each per frame:
    planes it is outside); for vertices inside them all, the screen position snapped to
    fixed point.
 3. ``vertex.light_vertices`` (Gouraud) or ``vertex.phong_vertices`` (Phong): the per-vertex
-   attributes the rasterizer interpolates.
+   attributes the rasterizer interpolates (Phong's first six rows are step 1's output).
 4. Only when some vertex is outside a clipping plane: ``clipping.clip_triangles`` cuts the
    triangles that cross one into a small mesh already in screen space, drawn after the
    others by the same kernels.
