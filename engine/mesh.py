@@ -149,7 +149,7 @@ def bent_muscle_mesh(radii, points, axes, segments: int = DEFAULT_SEGMENTS) -> M
     spokes = _spokes_along(axes, segments)  # (m, segments, 3)
     vertices = points[:, None, :] + r[:, None, None] * spokes
     normals = spokes - slopes[:, None, None] * axes[:, None, :]
-    normals /= np.linalg.norm(normals, axis=2, keepdims=True)
+    normals /= _lengths(normals)
     sin, cos = _quarter_circle(_cap_rings(segments, None))
     first = _arc(0.0, r[0], -sin[:0:-1], cos[:0:-1])
     last = _arc(0.0, r[-1], sin[1:], cos[1:])
@@ -257,11 +257,19 @@ def _muscle_body(radii: np.ndarray, length: float, offsets: np.ndarray, axis: np
         # The rim of a flat cap is a real right-angle edge: its ring keeps the side's exact
         # normal (the disk then shades like a shallow dome, which only the test mode shows).
         sides[[0, -1]] = sides[[1, -2]]
-    sides /= np.linalg.norm(sides, axis=2, keepdims=True)
+    sides /= _lengths(sides)
     normals = sides[:-1] + sides[1:]
-    normals /= np.linalg.norm(normals, axis=2, keepdims=True)
+    normals /= _lengths(normals)
     vertices = (x[:, None] * axis + offsets)[:, None, :] + r[:, None, None] * spokes
     return vertices, normals
+
+
+def _lengths(vectors: np.ndarray) -> np.ndarray:
+    """The lengths (..., 1) of ``vectors`` (..., 3): ``np.linalg.norm``'s sums, written out
+    over whole arrays, as three times as fast as its reduction over rows of three (the same
+    operations in the same order, so the same values)."""
+    x, y, z = vectors[..., 0], vectors[..., 1], vectors[..., 2]
+    return np.sqrt(x * x + y * y + z * z)[..., None]
 
 
 def _arc(x: float, radius: float, sin: np.ndarray, cos: np.ndarray) -> np.ndarray:
