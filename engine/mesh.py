@@ -233,8 +233,9 @@ def _ring_offsets(offsets, nodes: int, axis: np.ndarray) -> np.ndarray:
 
 def _muscle_body(radii: np.ndarray, length: float, offsets: np.ndarray, axis: np.ndarray,
                  spokes: np.ndarray, caps: str) -> tuple[np.ndarray, np.ndarray]:
-    """The body's rings about ``axis`` (3,), each of the ``spokes`` (segments, 3) about it:
-    vertices and unit normals, each (m, segments, 3).
+    """The body's rings about the unit ``axis`` (3,), vertex ``j`` of each out along
+    ``spokes[j]`` (``spokes``: (segments, 3), see `_spokes`): vertices and unit normals, each
+    (m, segments, 3).
 
     A frustum's side tilts its normal back by atan(dr/dx); a ring moved sideways tilts the
     side by as much again where its spoke points along the move, so along spoke ``s`` a
