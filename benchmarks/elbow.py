@@ -21,12 +21,15 @@ Rows, each a median over the runs:
   cache, start to exit.
 
 The two models are measured in turn within each round, so that the ratios stay meaningful
-on a noisy machine.
+on a noisy machine. Each row gives wall time and CPU time (every thread of this process,
+``time.process_time``): on a machine shared with other work, waiting for a core inflates
+the wall time, the CPU time much less, so its ratio is the steadier.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
 import subprocess
 import sys
@@ -47,13 +50,18 @@ def posed(path: Path):
     return scene.with_arm(scene.arm.at_flexion(FLEXION))
 
 
-def in_process(path: Path) -> float:
+def timed(call) -> tuple[float, float]:
+    """The wall and CPU seconds ``call()`` takes."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    call()
+    return time.perf_counter() - wall, time.process_time() - cpu
+
+
+def in_process(path: Path) -> tuple[float, float]:
     from biceps.engine.scene import SceneRenderer
 
     scene = posed(path)
-    start = time.perf_counter()
-    SceneRenderer().render(scene, *SIZE)
-    return time.perf_counter() - start
+    return timed(lambda: SceneRenderer().render(scene, *SIZE))
 
 
 class Sweep:
@@ -64,13 +72,11 @@ class Sweep:
 
         self.scene, self.renderer, self.calls = posed(path), SceneRenderer(), 0
 
-    def frame(self) -> float:
+    def frame(self) -> tuple[float, float]:
         self.calls += 1
         flexion = FLEXION + (self.calls % 20 - 10)  # a new pose every call
         scene = self.scene.with_arm(self.scene.arm.at_flexion(flexion))
-        start = time.perf_counter()
-        self.renderer.render(scene, *SIZE)
-        return time.perf_counter() - start
+        return timed(lambda: self.renderer.render(scene, *SIZE))
 
 
 class Turn:
@@ -82,51 +88,55 @@ class Turn:
         self.scene, self.renderer, self.calls = posed(path), SceneRenderer(), 0
         self.renderer.render(self.scene, *SIZE)
 
-    def frame(self) -> float:
+    def frame(self) -> tuple[float, float]:
         self.calls += 1
         scene = self.scene.with_view(yaw=self.scene.view.yaw + self.calls % 10)
-        start = time.perf_counter()
-        self.renderer.render(scene, *SIZE)
-        return time.perf_counter() - start
+        return timed(lambda: self.renderer.render(scene, *SIZE))
 
 
-def step(path: Path) -> tuple[float, float]:
-    """The pose's meshes after a contraction step, and the share inside engine/clearance.py."""
+def step(path: Path) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The pose's meshes after a contraction step, and the share inside engine/clearance.py,
+    each (wall, CPU) seconds."""
     from biceps.engine import anatomy
     from biceps.engine.config import load_config
     from biceps.engine.scene import scene_mesh
 
     config = load_config(path)
     arm = config.arm.at_flexion(FLEXION)
-    inside = [0.0]
+    inside = [0.0, 0.0]
     originals = {name: getattr(anatomy, name) for name in ("best_lean", "path_offsets")}
 
-    def timed(function):
+    def counted(function):
         def call(*args, **kwargs):
-            start = time.perf_counter()
+            wall, cpu = time.perf_counter(), time.process_time()
             try:
                 return function(*args, **kwargs)
             finally:
-                inside[0] += time.perf_counter() - start
+                inside[0] += time.perf_counter() - wall
+                inside[1] += time.process_time() - cpu
         return call
 
     try:
         for name, function in originals.items():
-            setattr(anatomy, name, timed(function))
-        start = time.perf_counter()
-        scene_mesh(arm.stepped(-0.1)[0], config.render)
-        return time.perf_counter() - start, inside[0]
+            setattr(anatomy, name, counted(function))
+        whole = timed(lambda: scene_mesh(arm.stepped(-0.1)[0], config.render))
+        return whole, (inside[0], inside[1])
     finally:
         for name, function in originals.items():
             setattr(anatomy, name, function)
 
 
-def command(path: Path, output: Path) -> float:
-    start = time.perf_counter()
+def command(path: Path, output: Path) -> tuple[float, float]:
+    """The command's wall time, and the CPU time of the process it ran in."""
+    before = os.times()
+    wall = time.perf_counter()
     subprocess.run([sys.executable, "-m", "biceps.cli", "snapshot", str(path), "-o", str(output),
                     "--size", "x".join(map(str, SIZE)), "--flexion", str(FLEXION)],
                    check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - start
+    after = os.times()
+    cpu = (after.children_user - before.children_user
+           + after.children_system - before.children_system)
+    return time.perf_counter() - wall, cpu
 
 
 def main() -> None:
@@ -143,9 +153,9 @@ def main() -> None:
         sweeps[name].frame()
         turns[name].frame()
     output = Path("/tmp/biceps-elbow-benchmark.png")
-    times: dict[tuple[str, str], list[float]] = {}
+    times: dict[tuple[str, str], list[tuple[float, float]]] = {}
 
-    def record(what: str, name: str, seconds: float) -> None:
+    def record(what: str, name: str, seconds: tuple[float, float]) -> None:
         times.setdefault((what, name), []).append(seconds)
 
     for _ in range(args.runs):
@@ -158,11 +168,18 @@ def main() -> None:
             record("drawing, view turned", name, turns[name].frame())
             if not args.no_command:
                 record("snapshot command", name, command(path, output))
-    print(f"{'median of ' + str(args.runs):<26}{'biceps (1)':>12}{'elbow (6)':>12}{'ratio':>8}")
+    load = " ".join(f"{value:.2f}" for value in os.getloadavg())
+    print(f"load average {load}; medians of {args.runs}, ms")
+    print(f"{'':<26}{'wall':>24}{'':>8}{'CPU, every thread':>24}")
+    print(f"{'':<26}" + f"{'biceps (1)':>12}{'elbow (6)':>12}{'ratio':>8}" * 2)
     for what in dict.fromkeys(kind for kind, _ in times):
-        one, six = (statistics.median(times[what, name]) for name in MODELS)
-        ratio = f"{six / one:>8.2f}" if one > 0 else f"{'-':>8}"
-        print(f"{what:<26}{1000 * one:>9.1f} ms{1000 * six:>9.1f} ms{ratio}")
+        row = f"{what:<26}"
+        for clock in (0, 1):
+            one, six = (statistics.median(seconds[clock] for seconds in times[what, name])
+                        for name in MODELS)
+            ratio = f"{six / one:>8.2f}" if one > 0 else f"{'-':>8}"
+            row += f"{1000 * one:>12.1f}{1000 * six:>12.1f}{ratio}"
+        print(row)
 
 
 if __name__ == "__main__":
