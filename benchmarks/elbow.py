@@ -14,7 +14,8 @@ Rows, each a median over the runs:
   frame): the pose's meshes, the framing and the drawing, the buffers reused.
 - pose's meshes: the arm contracted by 0.1 cm and its scene mesh built (what a held ``c``
   costs before the picture is drawn); "of which clearance" is the time inside
-  ``engine/clearance.py`` (`best_lean` and `path_offsets`, timed as anatomy calls them).
+  ``engine/clearance.py`` (`path_offsets`, timed as ``engine/packing.py`` calls it; the
+  leans are chosen once for an arm's shapes, not per pose).
 - drawing, view turned: the same pose drawn again turned by a degree, the meshes kept
   (what a held arrow key costs).
 - snapshot command: ``biceps snapshot --size 1920x1080 --flexion 60`` with a warm numba
@@ -97,14 +98,14 @@ class Turn:
 def step(path: Path) -> tuple[tuple[float, float], tuple[float, float]]:
     """The pose's meshes after a contraction step, and the share inside engine/clearance.py,
     each (wall, CPU) seconds."""
-    from biceps.engine import anatomy
+    from biceps.engine import packing
     from biceps.engine.config import load_config
     from biceps.engine.scene import scene_mesh
 
     config = load_config(path)
     arm = config.arm.at_flexion(FLEXION)
     inside = [0.0, 0.0]
-    originals = {name: getattr(anatomy, name) for name in ("best_lean", "path_offsets")}
+    originals = {name: getattr(packing, name) for name in ("path_offsets",)}
 
     def counted(function):
         def call(*args, **kwargs):
@@ -118,12 +119,12 @@ def step(path: Path) -> tuple[tuple[float, float], tuple[float, float]]:
 
     try:
         for name, function in originals.items():
-            setattr(anatomy, name, counted(function))
+            setattr(packing, name, counted(function))
         whole = timed(lambda: scene_mesh(arm.stepped(-0.1)[0], config.render))
         return whole, (inside[0], inside[1])
     finally:
         for name, function in originals.items():
-            setattr(anatomy, name, function)
+            setattr(packing, name, function)
 
 
 def command(path: Path, output: Path) -> tuple[float, float]:
