@@ -25,10 +25,11 @@ test for) instead of a check and a Python exception on every division in the inn
 target option its CPU target lists, ``numba/core/cpu.py``). The kernels allocate nothing
 (the caller passes every buffer, scratch too), so there is nothing for it to free; but
 numba counts references to every array a kernel hands an inlined function, and once that
-function branches its reference-count pruning (llvmlite's refprune pass) keeps an atomic increment and decrement per array per call: a draw loop that skipped the
-setup of triangles covering no pixel ran 2.4 times as slow (26 increments in
-``rasterize_gouraud`` against 13), where without counting it runs faster than before. A
-kernel that allocated an array would not compile.
+function branches, reference-count pruning (llvmlite's refprune pass) keeps an atomic
+increment and decrement per array per call: a draw loop that skipped the setup of
+triangles covering no pixel ran 2.4 times as slow (26 increments in ``rasterize_gouraud``
+against 13), where without counting it runs faster than before. A kernel that allocated
+an array would not compile.
 """
 
 import numba
