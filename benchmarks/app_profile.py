@@ -1,0 +1,171 @@
+"""Where the app's CPU goes while a key is held: per thread, and per function on the UI thread.
+
+    .venv/bin/python benchmarks/app_profile.py [--config configs/elbow.toml] [--size 200x60]
+                                               [--seconds 4] [--runs 3] [--top 30]
+
+The app runs in a pseudo-terminal played by ``benchmarks/tui_pty.py`` (which answers the
+app's questions and counts its frames), with the right arrow at 120 presses a second, the
+pty benchmark's flood. Two parts:
+
+- threads: each of the app's threads' CPU over the flood (``/proc/PID/task/TID/stat``, no
+  profiler attached), in ms per frame, median over ``--runs`` runs; the rows say which
+  Python thread each is (the UI thread runs asyncio and Textual, the render worker draws
+  and encodes, Textual's writer thread writes to the terminal).
+- functions: the flood again with cProfile on the UI thread (which slows it, so the figures
+  are shares, not rates): the ``--top`` functions by their own time, and by the time in
+  them and what they call, in ms per frame, and their calls per frame.
+
+The app is this script with ``--child``: it starts the app as ``biceps app`` does, and
+starts or stops cProfile on SIGUSR1 or SIGUSR2 (the stop writes the statistics and the map of
+thread ids to names for the parent to read).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import signal
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from tui_pty import CONFIG, FLOOD, Terminal, hold, started
+
+TICK = os.sysconf("SC_CLK_TCK")
+
+
+def run_child(config: Path, output: Path) -> None:
+    """The app, with cProfile and the thread map behind signals."""
+    import cProfile
+    import threading
+
+    profile = cProfile.Profile()
+
+    # Signals are handled on the main thread, so it is the UI thread that is profiled.
+    def start(*_) -> None:
+        profile.enable()
+
+    def stop(*_) -> None:
+        profile.disable()
+        profile.dump_stats(str(output))
+        names = {str(thread.native_id): thread.name for thread in threading.enumerate()}
+        output.with_suffix(".threads").write_text(json.dumps(names))
+
+    signal.signal(signal.SIGUSR1, start)
+    signal.signal(signal.SIGUSR2, stop)
+    sys.argv = ["biceps", "app", str(config)]
+    from biceps.cli import run
+
+    run()
+
+
+def thread_ticks(pid: int) -> dict[str, int]:
+    """Each thread's user and system time so far, in clock ticks."""
+    ticks = {}
+    for tid in os.listdir(f"/proc/{pid}/task"):
+        try:
+            with open(f"/proc/{pid}/task/{tid}/stat") as stat:
+                fields = stat.read().rpartition(")")[2].split()
+        except FileNotFoundError:
+            continue
+        ticks[tid] = int(fields[11]) + int(fields[12])
+    return ticks
+
+
+def thread_names(terminal: Terminal, output: Path) -> dict[str, str]:
+    os.kill(terminal.process.pid, signal.SIGUSR2)
+    deadline = time.monotonic() + 10
+    path = output.with_suffix(".threads")
+    while not path.exists() and time.monotonic() < deadline:
+        terminal.pump(time.monotonic() + 0.05)
+    names = json.loads(path.read_text())
+    path.unlink()
+    return names
+
+
+def measure_threads(argv: list[str], size: tuple[int, int], seconds: float,
+                    output: Path) -> tuple[dict[str, float], float, float]:
+    """ms per frame for each thread (by name), fps, CPU ms per frame in all."""
+    terminal = started(argv, *size)
+    try:
+        hold(terminal, 30, 1.0, wait=True)  # warm every path up
+        before = thread_ticks(terminal.process.pid)
+        phase = hold(terminal, FLOOD, seconds, wait=False)
+        after = thread_ticks(terminal.process.pid)
+        names = thread_names(terminal, output)
+    finally:
+        terminal.close()
+    frames = max(phase.frames, 1)
+    per_thread: dict[str, float] = {}
+    for tid, ticks in after.items():
+        name = names.get(tid, f"thread {tid}")
+        spent = (ticks - before.get(tid, 0)) / TICK
+        per_thread[name] = per_thread.get(name, 0.0) + 1000 * spent / frames
+    return per_thread, phase.fps, 1000 * phase.cpu / frames
+
+
+def profile_functions(argv: list[str], size: tuple[int, int], seconds: float, output: Path,
+                      top: int) -> None:
+    import pstats
+
+    terminal = started(argv, *size)
+    try:
+        hold(terminal, 30, 1.0, wait=True)
+        os.kill(terminal.process.pid, signal.SIGUSR1)
+        phase = hold(terminal, FLOOD, seconds, wait=False)
+        thread_names(terminal, output)
+    finally:
+        terminal.close()
+    frames = max(phase.frames, 1)
+    print(f"\nprofiled flood: {phase.fps:.1f} fps (slowed by the profiler), {frames} frames")
+    for key, title in (("tottime", "own time"), ("cumulative", "time with callees")):
+        stats = pstats.Stats(str(output))
+        print(f"\nUI thread, top {top} by {title}, ms per frame:")
+        rows = sorted(stats.stats.items(), key=lambda item: item[1][2 if key == "tottime"
+                                                                      else 3], reverse=True)
+        for (path, line, name), (_, calls, own, cumulative, _) in rows[:top]:
+            where = f"{Path(path).parent.name}/{Path(path).name}:{line}" if path != "~" else ""
+            print(f"  {1000 * own / frames:7.3f} {1000 * cumulative / frames:7.3f} "
+                  f"{calls / frames:8.1f}  {name}  {where}")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--config", type=Path, default=CONFIG)
+    parser.add_argument("--size", default="200x60")
+    parser.add_argument("--seconds", type=float, default=4.0)
+    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--top", type=int, default=30)
+    parser.add_argument("--no-functions", action="store_true", help="threads only")
+    parser.add_argument("--child", type=Path, help=argparse.SUPPRESS)
+    parser.add_argument("--output", type=Path, help=argparse.SUPPRESS)
+    arguments = parser.parse_args()
+    if arguments.child:
+        run_child(arguments.child, arguments.output)
+        return
+    size = tuple(map(int, arguments.size.split("x")))
+    with tempfile.TemporaryDirectory() as folder:
+        output = Path(folder) / "profile.pstat"
+        argv = [sys.executable, str(Path(__file__).resolve()), "--child",
+                str(arguments.config.resolve()), "--output", str(output)]
+        runs = [measure_threads(argv, size, arguments.seconds, output)
+                for _ in range(arguments.runs)]
+        print(f"model: {arguments.config}, {size[0]}x{size[1]}, key at {FLOOD:g}/s, "
+              f"load {os.getloadavg()[0]:.2f}")
+        print(f"fps {statistics.median(run[1] for run in runs):.1f}, CPU "
+              f"{statistics.median(run[2] for run in runs):.2f} ms per frame (medians of "
+              f"{len(runs)})")
+        names = sorted({name for run in runs for name in run[0]})
+        for name in sorted(names, key=lambda name: -statistics.median(
+                run[0].get(name, 0.0) for run in runs)):
+            print(f"  {statistics.median(run[0].get(name, 0.0) for run in runs):7.2f} ms/frame"
+                  f"  {name}")
+        if not arguments.no_functions:
+            profile_functions(argv, size, arguments.seconds, output, arguments.top)
+
+
+if __name__ == "__main__":
+    main()
