@@ -2,6 +2,7 @@
 
     .venv/bin/python benchmarks/app_profile.py [--config configs/elbow.toml] [--size 200x60]
                                                [--seconds 4] [--runs 3] [--top 30]
+                                               [--baseline ../main/.venv/bin/python]
 
 The app runs in a pseudo-terminal played by ``benchmarks/tui_pty.py`` (which answers the
 app's questions and counts its frames), with the right arrow at 120 presses a second, the
@@ -132,6 +133,20 @@ def profile_functions(argv: list[str], size: tuple[int, int], seconds: float, ou
                   f"{calls / frames:8.1f}  {name}  {where}")
 
 
+def report(name: str, runs: list[tuple[dict[str, float], float, float]]) -> float:
+    """Print the medians of ``runs``; return the CPU ms per frame."""
+    cpu = statistics.median(run[2] for run in runs)
+    fps = statistics.median(run[1] for run in runs)
+    print(f"{name}: {fps:.1f} fps, CPU {cpu:.2f} ms per frame, {cpu * fps / 10:.0f} % of a "
+          f"core (medians of {len(runs)})")
+    names = {name for run in runs for name in run[0]}
+    for thread in sorted(names, key=lambda thread: -statistics.median(
+            run[0].get(thread, 0.0) for run in runs)):
+        print(f"  {statistics.median(run[0].get(thread, 0.0) for run in runs):7.2f} ms/frame"
+              f"  {thread}")
+    return cpu
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--config", type=Path, default=CONFIG)
@@ -140,6 +155,9 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--top", type=int, default=30)
     parser.add_argument("--no-functions", action="store_true", help="threads only")
+    parser.add_argument("--baseline", type=Path, metavar="PYTHON",
+                        help="the Python of another checkout's environment (main's, say): "
+                             "its app is measured too, run for run in turn with this one")
     parser.add_argument("--child", type=Path, help=argparse.SUPPRESS)
     parser.add_argument("--output", type=Path, help=argparse.SUPPRESS)
     arguments = parser.parse_args()
@@ -147,24 +165,27 @@ def main() -> None:
         run_child(arguments.child, arguments.output)
         return
     size = tuple(map(int, arguments.size.split("x")))
+    pythons = {"this": Path(sys.executable)}
+    if arguments.baseline:
+        pythons = {"baseline": arguments.baseline, **pythons}
     with tempfile.TemporaryDirectory() as folder:
         output = Path(folder) / "profile.pstat"
-        argv = [sys.executable, str(Path(__file__).resolve()), "--child",
-                str(arguments.config.resolve()), "--output", str(output)]
-        runs = [measure_threads(argv, size, arguments.seconds, output)
-                for _ in range(arguments.runs)]
+        argvs = {name: [str(python), str(Path(__file__).resolve()), "--child",
+                        str(arguments.config.resolve()), "--output", str(output)]
+                 for name, python in pythons.items()}
+        runs: dict[str, list] = {name: [] for name in pythons}
+        loads = []
+        for _ in range(arguments.runs):
+            for name, argv in argvs.items():  # in turn, so that both see the same load
+                runs[name].append(measure_threads(argv, size, arguments.seconds, output))
+                loads.append(os.getloadavg()[0])
         print(f"model: {arguments.config}, {size[0]}x{size[1]}, key at {FLOOD:g}/s, "
-              f"load {os.getloadavg()[0]:.2f}")
-        print(f"fps {statistics.median(run[1] for run in runs):.1f}, CPU "
-              f"{statistics.median(run[2] for run in runs):.2f} ms per frame (medians of "
-              f"{len(runs)})")
-        names = sorted({name for run in runs for name in run[0]})
-        for name in sorted(names, key=lambda name: -statistics.median(
-                run[0].get(name, 0.0) for run in runs)):
-            print(f"  {statistics.median(run[0].get(name, 0.0) for run in runs):7.2f} ms/frame"
-                  f"  {name}")
+              f"load {min(loads):.2f} to {max(loads):.2f}")
+        cpu = {name: report(name, name_runs) for name, name_runs in runs.items()}
+        if arguments.baseline:
+            print(f"CPU per frame, this / baseline: {cpu['this'] / cpu['baseline']:.2f}")
         if not arguments.no_functions:
-            profile_functions(argv, size, arguments.seconds, output, arguments.top)
+            profile_functions(argvs["this"], size, arguments.seconds, output, arguments.top)
 
 
 if __name__ == "__main__":

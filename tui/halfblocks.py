@@ -8,8 +8,9 @@ are merged into one segment, so a flat background costs one segment per line.
 
 Kernels pack each cell's two pixels into one number, find the rows that differ from the
 last frame and the runs of equal cells in them; Python only turns runs into segments, with
-one cached :class:`~rich.style.Style` per cell colour. Textual writes the colour codes
-itself and composes the lines with whatever is drawn over the picture. For a 256-colour
+one cached :class:`~rich.style.Style` per cell colour, and each line's terminal text
+from the codes cached with it (``tui/prerendered.py``): Textual composes the lines with
+whatever is drawn over the picture, and writes the text. For a 256-colour
 terminal the frames come already mapped onto the palette (``tui/palette.py``), and each
 colour is written as its palette entry.
 """
@@ -27,6 +28,7 @@ from textual.strip import Strip
 
 from biceps.engine.jit import ngjit
 from biceps.tui.encoder import Picture
+from biceps.tui.prerendered import RESET, PrerenderedStrip, codes
 
 UPPER_HALF = "▀"
 BOTTOM = (1 << 24) - 1  # a cell's bottom pixel, as packed below
@@ -94,7 +96,8 @@ class _Colours(dict):
 
 
 class _Styles(dict):
-    """One style per cell colour, made on first use; ``colour`` makes a pixel's colour.
+    """One style per cell colour, and the codes Textual writes for it on a terminal of
+    ``color_system``, made on first use; ``colour`` makes a pixel's colour.
 
     A turning model makes a few hundred new cells a frame: their two pixels' colours are
     mostly ones seen before, so those are kept apart, and the style is made with
@@ -102,16 +105,17 @@ class _Styles(dict):
     and with the same codes, in a tenth of the time.
     """
 
-    def __init__(self, colour: Callable[[int], Color]) -> None:
+    def __init__(self, colour: Callable[[int], Color], color_system: str) -> None:
         super().__init__()
         self._colours = _Colours(colour)
+        self._color_system = color_system
 
-    def __missing__(self, cell: int) -> Style:
+    def __missing__(self, cell: int) -> tuple[Style, str]:
         top, bottom = cell >> 24, cell & BOTTOM
         colours = self._colours
         style = Style.from_color(None if top == bottom else colours[top], colours[bottom])
-        self[cell] = style
-        return style
+        self[cell] = entry = (style, codes(style, self._color_system))
+        return entry
 
     def clear(self) -> None:
         super().clear()
@@ -140,14 +144,18 @@ class HalfBlocks:
     # Enough for every colour of a few frames; a turning model keeps making new ones.
     MAX_STYLES = 1 << 17
 
-    def __init__(self, colour: Callable[[int], Color] = rgb_colour) -> None:
-        """``colour``: how a pixel's colour, ``r << 16 | g << 8 | b``, is written."""
+    def __init__(self, colour: Callable[[int], Color] = rgb_colour,
+                 color_system: str = "truecolor") -> None:
+        """``colour``: how a pixel's colour, ``r << 16 | g << 8 | b``, is written;
+        ``color_system``: the terminal's, as a :class:`~rich.console.Console` names it, for
+        which each line also carries its text (``tui/prerendered.py``)."""
+        self._color_system = color_system
         self._cells = np.zeros((0, 0), np.int64)
         self._previous = np.zeros((0, 0), np.int64)
         self._starts = np.zeros((0, 0), np.int32)  # find_runs' output, kept for the size
         self._counts = np.zeros(0, np.int32)
         self._strips: list[Strip] = []
-        self._styles = _Styles(colour)
+        self._styles = _Styles(colour, color_system)
 
     def encode(self, frame: np.ndarray) -> Picture:
         """The lines of ``frame`` ((2 h, w, 3) uint8): h lines of w cells."""
@@ -189,12 +197,13 @@ class HalfBlocks:
         styles = self._styles
         first = starts.tolist()
         ends = first[1:] + [width]
-        return Strip(
-            [
-                Segment(cell_text(cell, end - start), styles[cell])
-                for cell, start, end in zip(cells[starts].tolist(), first, ends)
-            ],
+        runs = [(styles[cell], cell_text(cell, end - start))
+                for cell, start, end in zip(cells[starts].tolist(), first, ends)]
+        return PrerenderedStrip(
+            [Segment(text, style) for (style, _), text in runs],
             width,
+            "".join([f"{codes}{text}{RESET}" for (_, codes), text in runs]),
+            self._color_system,
         )
 
 

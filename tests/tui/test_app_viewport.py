@@ -6,21 +6,28 @@ import time
 
 import pytest
 
+from textual._compositor import ChopsUpdate
+
 from biceps.engine.scene import SceneRenderer
 from biceps.tui.widgets.viewport import Viewport
 
 
 @pytest.fixture
 def painted(monkeypatch) -> list[int]:
-    """Every picture line Textual asks the viewport for, in order."""
+    """Every picture line Textual writes to the terminal, in order."""
     lines: list[int] = []
-    render_line = Viewport.render_line
+    repainted = Viewport.repainted
 
-    def recording(viewport, y):
-        lines.append(y)
-        return render_line(viewport, y)
+    def recording(viewport, update):
+        area = viewport.content_region
+        if isinstance(update, ChopsUpdate):
+            rows = [y for y, x1, x2 in update.spans if x1 < area.right and x2 >= area.x]
+        else:
+            rows = list(range(area.y, area.bottom))
+        lines.extend(y - area.y for y in rows if area.y <= y < area.bottom)
+        return repainted(viewport, update)
 
-    monkeypatch.setattr(Viewport, "render_line", recording)
+    monkeypatch.setattr(Viewport, "repainted", recording)
     return lines
 
 

@@ -27,6 +27,7 @@ from time import monotonic
 from typing import Sequence
 
 from rich.color import Color
+from rich.console import Console
 from rich.style import Style
 from textual import events, work
 from textual.filter import ANSIToTruecolor, LineFilter
@@ -43,6 +44,7 @@ from biceps.tui.encoder import Picture, PictureEncoder
 from biceps.tui.halfblocks import HalfBlocks
 from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer
+from biceps.tui.prerendered import PrerenderedStrip, console_system
 from biceps.tui.palette import Palette256, background_colour
 from biceps.tui.palette import colour as palette_colour
 
@@ -110,16 +112,22 @@ class Viewport(Widget, can_focus=True):
         self._pacer = pacer
         encoder = HalfBlocks() if encoder is None else encoder
         # Half-blocks in a 256-colour terminal: every frame mapped onto its palette as a
-        # whole (tui/palette.py), where Textual would map each colour on its own.
+        # whole (tui/palette.py), where Textual would map each colour on its own. The lines
+        # carry their text for this terminal's colours.
         self._palette: Palette256 | None = None
-        if isinstance(encoder, HalfBlocks) and self.app.console.color_system == "256":
-            self._palette, encoder = Palette256(), HalfBlocks(palette_colour)
+        system = console_system(self.app.console)
+        if isinstance(encoder, HalfBlocks) and system == "256":
+            self._palette, encoder = Palette256(), HalfBlocks(palette_colour, system)
+        elif isinstance(encoder, HalfBlocks) and system != "truecolor":
+            encoder = HalfBlocks(color_system=system)
         self._encoder = encoder
         self._scene: Scene | None = None
         self._requests: LatestOnly[_Request] = LatestOnly()
         self._requested = 0  # the number of the newest request
         self._shown = 0  # the number of the request whose frame is on screen
         self._strips: list[Strip] = []
+        # For each line of the picture, framed in the border's sides: (line, sides, framed).
+        self._framed_lines: dict[int, tuple[Strip, tuple[Strip, Strip], Strip]] = {}
         self._image = ""  # the image of the frame on screen, until it is written
         # The newest frame's image and its size in cells, to write again after a repaint.
         self._latest_image, self._latest_size = "", Size(0, 0)
@@ -151,6 +159,7 @@ class Viewport(Widget, can_focus=True):
         self._write(self._encoder.clear())
 
     def on_resize(self) -> None:
+        self._framed_lines.clear()
         # An image of the old size would stay over whatever now takes its place.
         self._latest_image = ""
         self.hide_image()
@@ -319,8 +328,62 @@ class Viewport(Widget, can_focus=True):
         return [line_filter for line_filter in super().get_line_filters()
                 if not isinstance(line_filter, ANSIToTruecolor)]
 
+    def render_lines(self, crop: Region) -> list[Strip]:
+        # Textual styles every line of the picture again at each frame (Widget.render_lines,
+        # through its StylesCache): border, padding, tint, opacity, filters, a new strip of
+        # the same segments. Where that styling comes down to the border's sides, as it
+        # does unless a filter or an effect applies, each line is framed in them here, once
+        # per new line, and keeps its terminal text (tui/prerendered.py). The border's rows
+        # and any other styling are Textual's own.
+        top, (width, height) = self.styles.gutter.top, self.size
+        first, last = max(crop.y, top), min(crop.bottom, top + height)
+        sides = self._sides() if first < last else None
+        if sides is None:
+            return super().render_lines(crop)
+        lines = []
+        if first > crop.y:
+            lines += super().render_lines(Region(crop.x, crop.y, crop.width, first - crop.y))
+        console = self.app.console
+        framed = [self._framed(y - top, width, sides, console) for y in range(first, last)]
+        if crop.column_span != (0, self.outer_size.width):
+            framed = [line.crop(*crop.column_span) for line in framed]
+        lines += framed
+        if crop.bottom > last:
+            lines += super().render_lines(Region(crop.x, last, crop.width, crop.bottom - last))
+        return lines
+
+    def _sides(self) -> tuple[Strip, Strip] | None:
+        """What Textual draws left and right of a line of the picture, if the rest of its
+        styling leaves the line as it is; None if not (then Textual styles every line)."""
+        if self.get_line_filters():
+            return None
+        gutter, width = self.styles.gutter, self.outer_size.width
+        styled = super().render_lines(Region(0, gutter.top, width, 1))[0]
+        if styled.crop(gutter.left, width - gutter.right) != self.render_line(0):
+            return None
+        return styled.crop(0, gutter.left), styled.crop(width - gutter.right, width)
+
+    def _framed(self, y: int, width: int, sides: tuple[Strip, Strip],
+                console: Console) -> Strip:
+        """Line ``y`` of the picture, ``width`` cells, between ``sides``, made again only if
+        either changed."""
+        line = self._line(y, width)
+        cached = self._framed_lines.get(y)
+        if cached is not None and cached[0] is line and cached[1] == sides:
+            return cached[2]
+        left, right = sides
+        if isinstance(line, PrerenderedStrip):
+            framed = line.framed(left, right, console)
+        else:
+            framed = Strip([*left, *line, *right],
+                           left.cell_length + line.cell_length + right.cell_length)
+        self._framed_lines[y] = (line, sides, framed)
+        return framed
+
     def render_line(self, y: int) -> Strip:
-        width = self.size.width
+        return self._line(y, self.size.width)
+
+    def _line(self, y: int, width: int) -> Strip:
         if y >= len(self._strips):
             return Strip.blank(width, self._background)
         strip = self._strips[y]

@@ -1,0 +1,101 @@
+"""The picture's lines carry the very text Textual would write for them, framed or not."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from rich.console import Console
+from textual.geometry import Region
+from textual.strip import Strip
+from textual.widget import Widget
+
+from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.palette import Palette256
+from biceps.tui.palette import colour as palette_colour
+from biceps.tui.prerendered import PrerenderedStrip
+from biceps.tui.widgets.viewport import Viewport
+
+FRAME = np.random.default_rng(7).integers(0, 256, (12, 40, 3), dtype=np.uint8)
+FRAME[:, 10:30] = (20, 30, 40)  # runs of equal cells too, written as spaces
+
+
+def _as_textual_writes(strip: Strip, console: Console) -> str:
+    """``strip`` as Textual writes a strip of the same segments."""
+    return Strip(list(strip), strip.cell_length).render(console)
+
+
+def _encoder(system: str) -> tuple[HalfBlocks, np.ndarray]:
+    if system == "256":
+        return HalfBlocks(palette_colour, system), Palette256().mapped(FRAME, (20, 30, 40))
+    return HalfBlocks(color_system=system), FRAME
+
+
+@pytest.mark.parametrize("system", ["truecolor", "256", "standard"])
+def test_a_line_carries_the_text_textual_writes_for_its_segments(system):
+    encoder, frame = _encoder(system)
+    console = Console(color_system=system, force_terminal=True)
+    strips = encoder.encode(frame).strips
+    assert all(isinstance(strip, PrerenderedStrip) for strip in strips)
+    assert [strip.render(console) for strip in strips] == [
+        _as_textual_writes(strip, console) for strip in strips
+    ]
+
+
+def test_a_console_of_other_colours_gets_textual_s_own_text():
+    strips = HalfBlocks().encode(FRAME).strips  # made for truecolor
+    console = Console(color_system="256", force_terminal=True)
+    written = [strip.render(console) for strip in strips]
+    assert written == [_as_textual_writes(strip, console) for strip in strips]
+    assert "38;2;" not in "".join(written) and "38;5;" in "".join(written)
+
+
+@pytest.mark.parametrize("system", ["truecolor", "256"])
+def test_a_framed_line_is_written_as_its_sides_around_it(system):
+    encoder, frame = _encoder(system)
+    console = Console(color_system=system, force_terminal=True)
+    line = encoder.encode(frame).strips[3]
+    left, right = Strip([*Strip.blank(1)]), Strip.blank(2).apply_style(Console().get_style("red"))
+    framed = line.framed(left, right, console)
+    assert list(framed) == [*left, *line, *right]
+    assert framed.cell_length == line.cell_length + 3
+    assert framed.render(console) == _as_textual_writes(framed, console)
+
+
+def _lines(viewport: Viewport, crop: Region) -> tuple[list[Strip], list[Strip]]:
+    """The viewport's lines for ``crop``, and those Textual would style for it itself."""
+    return viewport.render_lines(crop), Widget.render_lines(viewport, crop)
+
+
+def _assert_same(ours: list[Strip], textual: list[Strip], console: Console) -> None:
+    assert [list(line) for line in ours] == [list(line) for line in textual]
+    assert [line.render(console) for line in ours] == [
+        _as_textual_writes(line, console) for line in textual
+    ]
+
+
+async def test_the_viewport_frames_its_lines_as_textual_would_style_them(biceps):
+    async with biceps(size=(100, 30)) as session:
+        viewport = session.app.screen.query_one(Viewport)
+        await session.pilot.press("right")
+        await session.settle()
+        console = session.app.console
+        width, height = viewport.outer_size
+        for crop in (Region(0, 0, width, height), Region(3, 2, 20, 5), Region(0, 5, width, 1)):
+            ours, textual = _lines(viewport, crop)
+            _assert_same(ours, textual, console)
+        ours, _ = _lines(viewport, Region(0, 0, width, height))
+        assert isinstance(ours[5], PrerenderedStrip)  # framed here, not by Textual
+        viewport.blur()  # another border colour
+        await session.pilot.pause()
+        _assert_same(*_lines(viewport, Region(0, 0, width, height)), console)
+
+
+async def test_a_viewport_with_effects_has_textual_style_its_lines(biceps):
+    async with biceps(size=(100, 30)) as session:
+        viewport = session.app.screen.query_one(Viewport)
+        viewport.styles.tint = "red 40%"
+        await session.settle()
+        width, height = viewport.outer_size
+        ours, textual = _lines(viewport, Region(0, 0, width, height))
+        _assert_same(ours, textual, session.app.console)
+        assert not any(isinstance(line, PrerenderedStrip) for line in ours)

@@ -1,0 +1,64 @@
+"""Lines that carry the terminal text they are written as, made where it costs least.
+
+Textual writes a line by turning each segment into its colour codes and text
+(:meth:`Strip.render`), on the UI thread, at every frame. A picture's line is made once,
+on the render thread, from a few hundred cell colours that each know their codes, so it
+can carry its text from there; the viewport frames it in its border the same way. What
+the terminal is sent is the same, byte for byte: each segment as Textual writes it,
+``CSI <codes> m``, the text, ``CSI 0 m`` (``Strip.render_style``), with the codes Textual
+makes (``Strip.render_ansi``), for the colour system the text was made for. A console of
+another colour system, and any line Textual makes from one (cropped, divided under a
+dialog), are written by Textual as usual.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable
+
+from rich.console import COLOR_SYSTEMS, Console
+from rich.segment import Segment
+from rich.style import Style
+from textual.strip import Strip
+
+RESET = "\x1b[0m"
+
+
+def codes(style: Style, color_system: str) -> str:
+    """What Textual writes before a segment of ``style`` (which has colours and no link),
+    for a terminal of ``color_system`` (a :class:`~rich.console.Console`'s name for it)."""
+    # Of a copy: Textual keeps the codes it makes in the style, for any colour system.
+    copy = Style.from_color(style.color, style.bgcolor)
+    return f"\x1b[{Strip.render_ansi(copy, COLOR_SYSTEMS[color_system])}m"
+
+
+def console_system(console: Console) -> str:
+    """The colour system Textual renders for on ``console`` (truecolor if it has none)."""
+    return console.color_system or "truecolor"
+
+
+class PrerenderedStrip(Strip):
+    """A strip with the text it is written as on a terminal of ``color_system``."""
+
+    __slots__ = ["_text", "_color_system"]
+
+    def __init__(self, segments: Iterable[Segment], cell_length: int, text: str,
+                 color_system: str) -> None:
+        super().__init__(segments, cell_length)
+        self._text = text
+        self._color_system = color_system
+
+    def render(self, console: Console) -> str:
+        if console_system(console) == self._color_system:
+            return self._text
+        return super().render(console)
+
+    def framed(self, left: Strip, right: Strip, console: Console) -> Strip:
+        """This line between the one-cell strips ``left`` and ``right`` (a border's
+        sides), as one strip."""
+        segments = [*left, *self._segments, *right]
+        width = left.cell_length + self.cell_length + right.cell_length
+        if console_system(console) != self._color_system:
+            return Strip(segments, width)
+        # (the sides are the same strips for every line: Textual renders each once)
+        text = f"{left.render(console)}{self._text}{right.render(console)}"
+        return PrerenderedStrip(segments, width, text, self._color_system)
