@@ -7,12 +7,13 @@ which leaves the foreground out of the colour codes. Neighbouring cells that loo
 are merged into one segment, so a flat background costs one segment per line.
 
 Kernels pack each cell's two pixels into one number, find the rows that differ from the
-last frame and the runs of equal cells in them; Python only turns runs into segments, with
-one cached :class:`~rich.style.Style` per cell colour, and each line's terminal text
-from the codes cached with it (``tui/prerendered.py``): Textual composes the lines with
-whatever is drawn over the picture, and writes the text. For a 256-colour
-terminal the frames come already mapped onto the palette (``tui/palette.py``), and each
-colour is written as its palette entry.
+last frame and the runs of equal cells in them, and write each changed line's terminal text
+as Textual would write its segments (``tui/prerendered.py``); Python only turns runs into
+segments, with one cached :class:`~rich.style.Style` per cell colour. Textual composes the
+lines with whatever is drawn over the picture and writes their text. For a 256-colour
+terminal the frames come already mapped onto the palette (``tui/palette.py``), each colour
+is written as its palette entry, and the lines' text is made from codes cached per cell
+colour.
 """
 
 from __future__ import annotations
@@ -26,9 +27,10 @@ from rich.style import Style
 from textual.geometry import Size
 from textual.strip import Strip
 
-from biceps.engine.jit import ngjit
+from biceps.engine.jit import helper, ngjit
 from biceps.tui.encoder import Picture
 from biceps.tui.prerendered import RESET, PrerenderedStrip, codes
+from biceps.tui.sgr import put_number
 
 UPPER_HALF = "▀"
 BOTTOM = (1 << 24) - 1  # a cell's bottom pixel, as packed below
@@ -83,43 +85,73 @@ def find_runs(cells, changed, starts, counts):
         counts[y] = count
 
 
-class _Colours(dict):
-    """One colour per pixel colour, made on first use by ``colour``."""
-
-    def __init__(self, colour: Callable[[int], Color]) -> None:
-        super().__init__()
-        self._colour = colour
-
-    def __missing__(self, rgb: int) -> Color:
-        self[rgb] = colour = self._colour(rgb)
-        return colour
+# The longest run's codes: CSI 38;2;255;255;255;48;2;255;255;255 m ... CSI 0 m.
+MOST_CODES = len("\x1b[38;2;255;255;255;48;2;255;255;255m\x1b[0m")
+HALF_UTF8 = np.frombuffer(UPPER_HALF.encode(), np.uint8)
 
 
-class _Styles(dict):
-    """One style per cell colour, and the codes Textual writes for it on a terminal of
-    ``color_system``, made on first use; ``colour`` makes a pixel's colour.
+@ngjit
+def write_lines(cells, changed, starts, counts, half, out, ends):
+    """The text of each changed row as Textual writes its runs in 24-bit colour (the codes
+    of ``Strip.render_ansi`` between ``CSI`` and ``m``, the cells, ``CSI 0 m``).
 
-    A turning model makes a few hundred new cells a frame: their two pixels' colours are
-    mostly ones seen before, so those are kept apart, and the style is made with
-    ``Style.from_color``, which skips the parsing of ``Style()``: the same style, equal
-    and with the same codes, in a tenth of the time.
+    cells: (h, w) int64; changed, starts, counts: as from find_runs; half: the UTF-8 bytes
+    of UPPER_HALF; out: (h * (w * 3 + counts.max() * MOST_CODES),) uint8 or more, written;
+    ends: (h,) int64, written: row y's text is ``out[ends[y - 1]:ends[y]]`` (empty for a
+    row that has not changed).
     """
+    height, width = cells.shape
+    at = 0
+    for y in range(height):
+        if changed[y]:
+            for run in range(counts[y]):
+                start = starts[y, run]
+                end = starts[y, run + 1] if run + 1 < counts[y] else width
+                top, bottom = cells[y, start] >> 24, cells[y, start] & BOTTOM
+                out[at], out[at + 1] = 27, 91  # ESC [
+                at += 2
+                if top != bottom:
+                    at = _put_rgb(out, at, 38, top)
+                    out[at] = 59  # ;
+                    at += 1
+                at = _put_rgb(out, at, 48, bottom)
+                out[at] = 109  # m
+                at += 1
+                for _ in range(end - start):
+                    if top != bottom:
+                        for byte in range(len(half)):
+                            out[at + byte] = half[byte]
+                        at += len(half)
+                    else:
+                        out[at] = 32  # a space
+                        at += 1
+                out[at], out[at + 1], out[at + 2], out[at + 3] = 27, 91, 48, 109  # ESC [ 0 m
+                at += 4
+        ends[y] = at
 
-    def __init__(self, colour: Callable[[int], Color], color_system: str) -> None:
+
+@helper
+def _put_rgb(out, at, code, rgb):
+    """Write ``code;2;r;g;b`` at ``out[at:]``; return where it ends."""
+    at = put_number(out, at, code)
+    out[at], out[at + 1] = 59, 50  # ;2
+    at += 2
+    for shift in (16, 8, 0):
+        out[at] = 59
+        at = put_number(out, at + 1, (rgb >> shift) & 0xFF)
+    return at
+
+
+class _Made(dict):
+    """Values made on first use by ``make``."""
+
+    def __init__(self, make: Callable) -> None:
         super().__init__()
-        self._colours = _Colours(colour)
-        self._color_system = color_system
+        self._make = make
 
-    def __missing__(self, cell: int) -> tuple[Style, str]:
-        top, bottom = cell >> 24, cell & BOTTOM
-        colours = self._colours
-        style = Style.from_color(None if top == bottom else colours[top], colours[bottom])
-        self[cell] = entry = (style, codes(style, self._color_system))
-        return entry
-
-    def clear(self) -> None:
-        super().clear()
-        self._colours.clear()
+    def __missing__(self, key):
+        self[key] = value = self._make(key)
+        return value
 
 
 def rgb_colour(rgb: int) -> Color:
@@ -155,7 +187,17 @@ class HalfBlocks:
         self._starts = np.zeros((0, 0), np.int32)  # find_runs' output, kept for the size
         self._counts = np.zeros(0, np.int32)
         self._strips: list[Strip] = []
-        self._styles = _Styles(colour, color_system)
+        # A turning model makes a few hundred new cells a frame: their two pixels' colours
+        # are mostly ones seen before, so those are kept apart, and the style is made with
+        # Style.from_color, which skips the parsing of Style(): the same style, equal and
+        # with the same codes, in a tenth of the time.
+        self._colours = _Made(colour)
+        self._styles = _Made(self._style)
+        self._codes = _Made(lambda cell: codes(self._styles[cell], color_system))
+        # The lines' text in 24-bit colour comes from a kernel, the rest from the codes.
+        self._written = colour is rgb_colour and color_system == "truecolor"
+        self._text = np.zeros(0, np.uint8)
+        self._text_ends = np.zeros(0, np.int64)
 
     def encode(self, frame: np.ndarray) -> Picture:
         """The lines of ``frame`` ((2 h, w, 3) uint8): h lines of w cells."""
@@ -173,12 +215,14 @@ class HalfBlocks:
         starts, counts = self._starts, self._counts
         find_runs(self._cells, changed, starts, counts)
         if len(self._styles) > self.MAX_STYLES:
-            self._styles.clear()
+            for made in (self._colours, self._styles, self._codes):
+                made.clear()
+        texts = self._texts(changed) if self._written else [None] * height
         # A frame of another size changes every row, so no old strip is kept from it.
         old = self._strips if len(self._strips) == height else [None] * height
         strips = [
-            self._strip(self._cells[y], starts[y, : counts[y]]) if row_changed else strip
-            for y, (row_changed, strip) in enumerate(zip(changed.tolist(), old))
+            self._strip(self._cells[y], starts[y, : counts[y]], text) if row_changed else strip
+            for y, (row_changed, strip, text) in enumerate(zip(changed.tolist(), old, texts))
         ]
         self._strips = strips
         return Picture(strips, _spans(changed))
@@ -192,19 +236,41 @@ class HalfBlocks:
     def clear(self) -> str:
         return ""  # the lines are all there is, and Textual writes them
 
-    def _strip(self, cells: np.ndarray, starts: np.ndarray) -> Strip:
+    def _style(self, cell: int) -> Style:
+        top, bottom = cell >> 24, cell & BOTTOM
+        colours = self._colours
+        return Style.from_color(None if top == bottom else colours[top], colours[bottom])
+
+    def _texts(self, changed: np.ndarray) -> list[str | None]:
+        """The text of each changed row (None for the others), from write_lines."""
+        cells, counts = self._cells, self._counts
+        height, width = cells.shape
+        size = height * (width * len(HALF_UTF8) + int(counts.max(initial=0)) * MOST_CODES)
+        if len(self._text) < size:
+            self._text = np.empty(size, np.uint8)
+        if len(self._text_ends) != height:
+            self._text_ends = np.empty(height, np.int64)
+        write_lines(cells, changed, self._starts, counts, HALF_UTF8, self._text,
+                    self._text_ends)
+        text, ends = self._text, self._text_ends.tolist()
+        return [text[start:end].tobytes().decode() if row_changed else None
+                for row_changed, start, end in zip(changed.tolist(), [0, *ends], ends)]
+
+    def _strip(self, cells: np.ndarray, starts: np.ndarray, text: str | None) -> Strip:
+        """The line of ``cells`` whose runs start at ``starts``; ``text``: its terminal
+        text, if made already."""
         width = len(cells)
         styles = self._styles
         first = starts.tolist()
         ends = first[1:] + [width]
-        runs = [(styles[cell], cell_text(cell, end - start))
-                for cell, start, end in zip(cells[starts].tolist(), first, ends)]
-        return PrerenderedStrip(
-            [Segment(text, style) for (style, _), text in runs],
-            width,
-            "".join([f"{codes}{text}{RESET}" for (_, codes), text in runs]),
-            self._color_system,
-        )
+        cells_of_runs = cells[starts].tolist()
+        segments = [Segment(cell_text(cell, end - start), styles[cell])
+                    for cell, start, end in zip(cells_of_runs, first, ends)]
+        if text is None:
+            codes = self._codes
+            text = "".join([f"{codes[cell]}{segment.text}{RESET}"
+                            for cell, segment in zip(cells_of_runs, segments)])
+        return PrerenderedStrip(segments, width, text, self._color_system)
 
 
 def _spans(changed: np.ndarray) -> list[tuple[int, int]]:
