@@ -249,8 +249,11 @@ class BicepsApp(App[None]):
     def on_cursor_position(self, event: events.CursorPosition) -> None:
         self.pacer.answered(event.x, event.y)
 
-    def watch_scene(self, scene: Scene) -> None:
-        self.unsaved = has_unsaved_edits(scene, self._saved)
+    def watch_scene(self, old: Scene, scene: Scene) -> None:
+        # A turn, a move, the light leave the model as it was, saved or not: no comparing it
+        # with the saved one at each step of a held key (0.3 ms with elbow.toml's six).
+        if scene.arm is not old.arm:
+            self.unsaved = has_unsaved_edits(scene, self._saved)
 
     def notify(
         self,

@@ -276,3 +276,19 @@ async def test_a_drag_saves_a_round_angle(biceps, config_path):
         session.app.action_turn(13.783785, 0.0, 0.0)
         await session.pilot.press("ctrl+s")
     assert "\nyaw = -11.2 " in config_path.read_text()
+
+
+async def test_turning_keeps_whether_the_model_is_saved_without_comparing_it(biceps,
+                                                                             monkeypatch):
+    from biceps.tui import app
+
+    compared = []
+    has_unsaved_edits = app.has_unsaved_edits
+    monkeypatch.setattr(app, "has_unsaved_edits",
+                        lambda *scenes: compared.append(scenes) or has_unsaved_edits(*scenes))
+    async with biceps() as session:
+        compared.clear()  # (once, as the app starts)
+        await session.pilot.press("right", "l", "w")
+        assert compared == [] and not session.app.unsaved
+        await session.pilot.press("c", "right", "l")
+        assert len(compared) == 1 and session.app.unsaved
