@@ -38,8 +38,9 @@ from tui_pty import CONFIG, FLOOD, Terminal, hold, started
 TICK = os.sysconf("SC_CLK_TCK")
 
 
-def run_child(config: Path, output: Path) -> None:
-    """The app, with cProfile and the thread map behind signals."""
+def listen(output: Path) -> None:
+    """From now on, SIGUSR1 starts cProfile and SIGUSR2 stops it and writes its statistics
+    and the map of thread ids to names to ``output``."""
     import cProfile
     import threading
 
@@ -57,6 +58,11 @@ def run_child(config: Path, output: Path) -> None:
 
     signal.signal(signal.SIGUSR1, start)
     signal.signal(signal.SIGUSR2, stop)
+
+
+def run_child(config: Path, output: Path) -> None:
+    """The app, as ``biceps app`` starts it, with :func:`listen`."""
+    listen(output)
     sys.argv = ["biceps", "app", str(config)]
     from biceps.cli import run
 
@@ -142,8 +148,9 @@ def report(name: str, runs: list[tuple[dict[str, float], float, float]]) -> floa
     names = {name for run in runs for name in run[0]}
     for thread in sorted(names, key=lambda thread: -statistics.median(
             run[0].get(thread, 0.0) for run in runs)):
-        print(f"  {statistics.median(run[0].get(thread, 0.0) for run in runs):7.2f} ms/frame"
-              f"  {thread}")
+        spent = statistics.median(run[0].get(thread, 0.0) for run in runs)
+        if spent >= 0.005:
+            print(f"  {spent:7.2f} ms/frame  {thread}")
     return cpu
 
 
