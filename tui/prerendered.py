@@ -55,7 +55,7 @@ class PrerenderedStrip(Strip):
     def framed(self, left: Strip, right: Strip, console: Console) -> Strip:
         """This line between the one-cell strips ``left`` and ``right`` (a border's
         sides), as one strip."""
-        segments = [*left, *self._segments, *right]
+        segments = [*left, *self, *right]
         width = left.cell_length + self.cell_length + right.cell_length
         if console_system(console) != self._color_system:
             return Strip(segments, width)
