@@ -9,16 +9,18 @@ app's questions and counts its frames), with the right arrow at 120 presses a se
 pty benchmark's flood. Two parts:
 
 - threads: each of the app's threads' CPU over the flood (``/proc/PID/task/TID/stat``, no
-  profiler attached), in ms per frame, median over ``--runs`` runs; the rows say which
-  Python thread each is (the UI thread runs asyncio and Textual, the render worker draws
-  and encodes, Textual's writer thread writes to the terminal).
+  profiler attached), in ms per frame, median over ``--runs`` runs, named as Python names
+  them: MainThread is the UI thread (asyncio and Textual); asyncio_0 the render worker
+  (Textual runs thread workers in asyncio's executor), which draws and encodes, with
+  biceps-band_0 drawing the other band; textual-input and textual-output read and write
+  the terminal. With ``--baseline``, another checkout's app too, run for run in turn.
 - functions: the flood again with cProfile on the UI thread (which slows it, so the figures
   are shares, not rates): the ``--top`` functions by their own time, and by the time in
   them and what they call, in ms per frame, and their calls per frame.
 
 The app is this script with ``--child``: it starts the app as ``biceps app`` does, and
-starts or stops cProfile on SIGUSR1 or SIGUSR2 (the stop writes the statistics and the map of
-thread ids to names for the parent to read).
+starts or stops cProfile on SIGUSR1 or SIGUSR2 (the stop writes the statistics and the
+map of thread ids to names for the parent to read).
 """
 
 from __future__ import annotations
