@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any, Callable, Iterator, get_args
 
 import click
 
-from biceps.configs import DEFAULT as DEFAULT_CONFIG
+from biceps.configs import DEFAULT as DEFAULT_CONFIG, named as bundled_model
 from biceps.engine.bounds import COORDINATE, SCALE, OutOfBounds, finite
 from biceps.engine.errors import BicepsError
 from biceps.engine.names import printable
@@ -96,8 +96,10 @@ OWN_OPTIONS = ("--help", "-h", "--version")
 
 def _not_a_config(word: str) -> bool:
     """Whether ``word`` cannot be meant as a configuration file: no such file or folder,
-    and not a name ending in .toml (whose absence the app's own message explains)."""
-    return not word.lower().endswith(".toml") and not Path(word).exists()
+    not a bundled model's name, and not a name ending in .toml (whose absence the app's own
+    message explains)."""
+    return (not word.lower().endswith(".toml") and not Path(word).exists()
+            and bundled_model(word) is None)
 
 
 def _refusals_exit_2(command: Callable) -> Callable:
@@ -114,6 +116,12 @@ def _refusals_exit_2(command: Callable) -> Callable:
     return run
 
 
+def _file_or_bundled(_ctx: Any, _param: Any, path: Path) -> Path:
+    """CONFIG: the file it names here, if there is one, else the bundled model of that name
+    (``elbow``, ``configs/elbow.toml``), wherever biceps was installed."""
+    return path if path.exists() else bundled_model(str(path)) or path
+
+
 # Plain paths: whether each is a file that can be read, or written, is for the engine to
 # say (engine/files.py), in its words, with the name made printable.
 config_argument = click.argument(
@@ -121,6 +129,7 @@ config_argument = click.argument(
     required=False,
     default=str(DEFAULT_CONFIG),
     type=click.Path(path_type=Path),
+    callback=_file_or_bundled,
 )
 
 
@@ -148,7 +157,8 @@ def main() -> None:
     """A shaded 3D biceps that contracts and stretches at exactly constant volume.
 
     Run with no command (or just a CONFIG) to open the terminal app; `biceps app --help`
-    lists its options.
+    lists its options. CONFIG is a TOML file, or a bundled model by its name, from any
+    folder: biceps (the default), elbow, fine or toy.
     """
     # Read here, before any command, so that a bad value is refused in words at the start
     # rather than raised later inside the app's picture thread.

@@ -5,10 +5,24 @@ importing numpy, pydantic or numba.
 """
 
 from importlib.resources import files
-from pathlib import Path
+from pathlib import Path, PurePath
 
 FOLDER = Path(str(files(__name__)))
 """The folder of the bundled models (installed unzipped, so a real folder)."""
 
 DEFAULT = FOLDER / "biceps.toml"
 """The model the app and every command open when given none."""
+
+
+def named(word: str) -> Path | None:
+    """The bundled model that ``word`` names, or None.
+
+    Installed with pipx, the models are somewhere in site-packages, not beside the person
+    typing: ``elbow``, ``elbow.toml`` and ``configs/elbow.toml`` (as README.md writes it)
+    each name configs/elbow.toml wherever it was installed.
+    """
+    path = PurePath(word)
+    if path.parent not in (PurePath("."), PurePath("configs")) or path.suffix not in ("", ".toml"):
+        return None
+    model = FOLDER / f"{path.stem}.toml"
+    return model if path.stem and model.is_file() else None

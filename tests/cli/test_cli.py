@@ -227,6 +227,45 @@ def test_a_config_file_that_is_not_there_is_still_said_so(tmp_path):
     assert "mine.toml: no such file" in result.stderr
 
 
+@pytest.mark.parametrize("word", ["elbow", "elbow.toml", "configs/elbow.toml"])
+def test_a_bundled_model_is_found_by_its_name_from_any_folder(word, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # as after pipx install: no repository here
+    result = run("info", word)
+    assert result.exit_code == 0, result.output
+    assert result.stdout.splitlines()[0] == str(BUNDLED / "elbow.toml")
+    assert "TRIlong" in result.stdout
+
+
+def test_a_file_here_comes_before_a_bundled_model_of_the_same_name(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "elbow.toml").write_bytes((BUNDLED / "toy.toml").read_bytes())
+    result = run("info", "elbow.toml")
+    assert result.exit_code == 0, result.output
+    assert result.stdout.splitlines()[0] == "elbow.toml"
+    assert "TRIlong" not in result.stdout
+
+
+def test_a_bundled_model_named_alone_opens_the_app_on_it(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = run("elbow", "--fps", "0")  # refused by the app's own options, so not opened
+    assert result.exit_code == 2
+    assert "must be 0.1 to 1000, got '0'" in result.stderr
+
+
+@pytest.mark.parametrize("word", ["elbow.obj", "other/elbow.toml", "__init__", "elbows"])
+def test_only_a_bundled_model_s_own_name_is_taken_for_it(word, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = run("info", word)
+    assert result.exit_code == 2
+    assert f"biceps: {word}: no such file" in result.stderr
+
+
+def test_the_help_names_every_bundled_model():
+    shown = run("--help").stdout
+    for model in BUNDLED.glob("*.toml"):
+        assert model.stem in shown
+
+
 def test_version():
     result = run("--version")
     assert result.exit_code == 0
