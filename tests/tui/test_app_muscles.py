@@ -127,3 +127,29 @@ async def test_the_palette_lists_no_muscles_for_one(biceps):
     async with biceps() as session:
         offered = {hit.text async for hit in KeyCommands(session.app.screen).discover()}
         assert not any(text.startswith("Edit muscle") for text in offered)
+
+
+@pytest.mark.parametrize("first", ["t", "C"], ids=["t, a muscle picked", "C, contracted"])
+async def test_a_node_opened_in_the_same_burst_as_a_change_shows_and_keeps_what_it_has_now(
+        biceps, elbow, first):
+    # "t" then enter, typed quickly, opened the node of the muscle picked before, and OK put
+    # that muscle's radius and growth into the new one's (the BRA's node 3, 2.68 cm with
+    # growth 1.93, became 0.3 cm with growth 0): the table shows a burst's numbers only after
+    # the burst, and the dialog took them from the table.
+    from textual import events
+    from textual.widgets import Input
+
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app = session.app
+        app.screen.query_one(NodeTable).focus()
+        await session.pilot.press(*["down"] * 7)  # node 8, which grows as it shortens
+        for key in (first, "enter"):
+            app.post_message(events.Key(key, None))
+        await session.settle()
+        picked = app.scene.arm.muscles[app.scene.selected]
+        radius, growth = (box.value for box in app.screen.query(Input))
+        assert (radius, growth) == (f"{picked.radii[7]:.4f}".rstrip("0").rstrip("."),
+                                    f"{picked.growth[7]:.4f}".rstrip("0").rstrip("."))
+        await session.pilot.press("enter")  # OK with nothing typed: the node stays as it was
+        kept = app.scene.arm.muscles[app.scene.selected]
+        assert (kept.radii[7], kept.growth[7]) == (picked.radii[7], picked.growth[7])

@@ -188,9 +188,17 @@ class NodeTable(ScrollView, can_focus=True):
         self.cursor_row = row % max(self.row_count, 1)
 
     def action_edit_node(self) -> None:
-        muscle, index = self._muscle, self.cursor_row
+        # The keys typed with this one (t, a held c) may have changed the muscle, but the
+        # table shows a burst's numbers only after the burst (MainScreen._show_numbers, put
+        # on the app's queue then): open the node behind them, on the muscle as it is now,
+        # which is the one OK changes.
+        self.app.call_later(self._open_node, self.cursor_row)
+
+    def _open_node(self, index: int) -> None:
+        muscle = self._muscle
         if muscle is None:
             return
+        index = min(index, muscle.node_count - 1)
 
         def check(radius: float, growth: float) -> None:
             with_node(muscle, index, radius, growth)
