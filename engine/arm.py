@@ -107,7 +107,9 @@ class Arm:
             raise RefusedChange(
                 f"length {length:.2f} cm is outside what this arm allows: "
                 f"{low:.2f} to {high:.2f} cm (elbow flexion "
-                f"{self.skeleton.flexion(high):.0f} to {self.skeleton.flexion(low):.0f} degrees)"
+                # round(), an int: the straight arm's -1e-14 degrees is 0, not "-0"
+                f"{round(self.skeleton.flexion(high))} to {round(self.skeleton.flexion(low))} "
+                "degrees)"
                 + self._muscle_limit_note(high)
             )
         muscle = self.muscle.at_length(length)

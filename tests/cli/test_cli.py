@@ -198,6 +198,12 @@ def test_snapshot_with_an_output_and_ansi_says_both_were_given(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_the_elbow_s_range_in_a_refusal_reads_0_not_minus_0():
+    result = run("info", BUNDLED / "elbow.toml", "--length", "5")
+    assert result.exit_code == 2
+    assert "26.72 to 35.25 cm (elbow flexion 0 to 130 degrees)" in result.stderr
+
+
 def test_info_gives_the_range_the_muscle_itself_allows(tmp_path):
     thin = tmp_path / "thin.toml"
     thin.write_text((BUNDLED / "toy.toml").read_text().replace("[1.0, 0.5],\n    [2.0",
