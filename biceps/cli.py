@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any, Callable, Iterator, get_args
 
 import click
 
-from biceps.configs import DEFAULT as DEFAULT_CONFIG, named as bundled_model
+from biceps.configs import DEFAULT as DEFAULT_CONFIG, file_or_bundled, named as bundled_model
 from biceps.engine.bounds import COORDINATE, SCALE, OutOfBounds, finite
 from biceps.engine.errors import BicepsError
 from biceps.engine.names import printable
@@ -116,12 +116,6 @@ def _refusals_exit_2(command: Callable) -> Callable:
     return run
 
 
-def _file_or_bundled(_ctx: Any, _param: Any, path: Path) -> Path:
-    """CONFIG: the file it names here, if there is one, else the bundled model of that name
-    (``elbow``, ``configs/elbow.toml``), wherever biceps was installed."""
-    return path if path.exists() else bundled_model(str(path)) or path
-
-
 # Plain paths: whether each is a file that can be read, or written, is for the engine to
 # say (engine/files.py), in its words, with the name made printable.
 config_argument = click.argument(
@@ -129,7 +123,7 @@ config_argument = click.argument(
     required=False,
     default=str(DEFAULT_CONFIG),
     type=click.Path(path_type=Path),
-    callback=_file_or_bundled,
+    callback=lambda _ctx, _param, path: file_or_bundled(path),
 )
 
 

@@ -26,3 +26,10 @@ def named(word: str) -> Path | None:
         return None
     model = FOLDER / f"{path.stem}.toml"
     return model if path.stem and model.is_file() else None
+
+
+def file_or_bundled(path: Path) -> Path:
+    """``path`` if there is such a file or folder, else the bundled model it names, if any
+    (a file of that name where one works comes first), else ``path`` (for the reader to say
+    there is no such file)."""
+    return path if path.exists() else named(str(path)) or path

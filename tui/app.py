@@ -31,7 +31,7 @@ from textual.reactive import var
 from textual.screen import Screen
 from textual.theme import ThemeProvider
 
-from biceps.configs import FOLDER as BUNDLED_MODELS
+from biceps.configs import FOLDER as BUNDLED_MODELS, file_or_bundled
 from biceps.engine import coldstart
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, load_config, save_config
@@ -505,12 +505,16 @@ class BicepsApp(App[None]):
         self._ask(self._open)
 
     async def _open(self) -> None:
+        # The file open now, to change: a bundled model's own path, for there is nothing
+        # else to open where one works; a bundled model may be named (toy, configs/toy.toml).
+        field = Field("File", printable(self.config.path), parse_path,
+                      PathSuggester((".toml",)))
         answer = await self.push_screen_wait(
-            Prompt("Open a configuration", [self._config_file_field()], accept="Open"))
+            Prompt("Open a configuration", [field], accept="Open"))
         if answer is None:
             return
         try:
-            config = load_config(answer[0])
+            config = load_config(file_or_bundled(answer[0]))
         except BicepsError as error:
             self.notify(str(error), title="Not opened", severity="error", markup=False)
             return

@@ -6,6 +6,7 @@ import re
 from pathlib import Path
 
 import numpy as np
+import pytest
 from PIL import Image
 from textual.widgets import Input
 
@@ -114,6 +115,27 @@ async def test_opening_another_configuration_shows_it(biceps):
         assert session.app.sub_title == "toy.toml"
         assert not session.app.unsaved
         assert session.app.screen.query_one(NodeTable).row_count == 4
+
+
+@pytest.mark.parametrize("name", ["toy", "configs/toy.toml"])
+async def test_a_bundled_model_is_opened_by_its_name_from_any_folder(biceps, name, tmp_path,
+                                                                      monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    async with biceps() as session:
+        await session.pilot.press("ctrl+o")
+        await _answer(session, name)
+        assert session.app.scene.arm.muscle.node_count == 4
+        assert session.app.config.path == BUNDLED / "toy.toml"
+
+
+async def test_the_open_dialog_offers_the_file_open_now(biceps, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # not where the bundled model is: no copy of it here
+    async with biceps(on=load_config(BUNDLED / "elbow.toml")) as session:
+        await session.pilot.press("ctrl+o")
+        (box,) = session.app.screen.query(Input)
+        assert box.value == str(session.app.config.path)
+        await session.pilot.press("enter")
+        assert not session.warnings
 
 
 async def test_a_broken_file_is_not_opened_and_the_model_stays(biceps):
