@@ -27,7 +27,8 @@ from typing import TYPE_CHECKING, Any, Callable, Iterator, get_args
 
 import click
 
-from biceps.configs import DEFAULT as DEFAULT_CONFIG, file_or_bundled, named as bundled_model
+from biceps.configs import (DEFAULT as DEFAULT_CONFIG, FOLDER as BUNDLED, file_or_bundled,
+                            named as bundled_model)
 from biceps.engine.bounds import COORDINATE, SCALE, OutOfBounds, finite
 from biceps.engine.errors import BicepsError
 from biceps.engine.names import printable
@@ -88,7 +89,9 @@ class _AppByDefault(click.Group):
         hint = f" Did you mean {close[0]!r}?" if close else ""
         raise click.UsageError(
             f"No such command or file {word!r}.{hint} Commands: {', '.join(commands)}; or "
-            "give a configuration file (.toml) to open the app on it.", ctx)
+            "give a configuration file (.toml), or a bundled model's name ("
+            f"{', '.join(sorted(model.stem for model in BUNDLED.glob('*.toml')))}), to open "
+            "the app on it.", ctx)
 
 
 OWN_OPTIONS = ("--help", "-h", "--version")

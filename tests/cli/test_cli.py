@@ -219,6 +219,7 @@ def test_info_gives_the_range_the_muscle_itself_allows(tmp_path):
 @pytest.mark.parametrize(("word", "message"), [
     ("snaphsot", "No such command or file 'snaphsot'. Did you mean 'snapshot'?"),
     ("frobnicate", "No such command or file 'frobnicate'. Commands: animate, app, doctor, "),
+    ("frobnicate", "or a bundled model's name (biceps, elbow, fine, toy), to open the app"),
 ])
 def test_a_mistyped_command_is_not_taken_for_a_file(word, message):
     result = run(word, "-o", "x.png")
