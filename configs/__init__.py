@@ -32,4 +32,7 @@ def file_or_bundled(path: Path) -> Path:
     """``path`` if there is such a file or folder, else the bundled model it names, if any
     (a file of that name where one works comes first), else ``path`` (for the reader to say
     there is no such file)."""
-    return path if path.exists() else named(str(path)) or path
+    try:
+        return path if path.exists() else named(str(path)) or path
+    except OSError:  # a name too long to look up, say: the reader refuses it in its words
+        return path
