@@ -101,8 +101,11 @@ def _not_a_config(word: str) -> bool:
     """Whether ``word`` cannot be meant as a configuration file: no such file or folder,
     not a bundled model's name, and not a name ending in .toml (whose absence the app's own
     message explains)."""
-    return (not word.lower().endswith(".toml") and not Path(word).exists()
-            and bundled_model(word) is None)
+    try:
+        return not (word.lower().endswith(".toml") or Path(word).exists()
+                    or bundled_model(word) is not None)
+    except OSError:  # a name too long to look up, say: the app's reader says why in words
+        return False
 
 
 def _refusals_exit_2(command: Callable) -> Callable:

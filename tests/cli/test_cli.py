@@ -228,6 +228,12 @@ def test_a_mistyped_command_is_not_taken_for_a_file(word, message):
     assert "No such option" not in result.stderr
 
 
+def test_a_first_word_too_long_for_a_file_name_is_refused_in_words():
+    result = run("x" * 300)  # was a traceback: OSError, File name too long
+    assert result.exit_code == 2
+    assert "the name is 300 bytes long; a file name here has at most 255" in result.stderr
+
+
 def test_a_config_file_that_is_not_there_is_still_said_so(tmp_path):
     result = run(tmp_path / "mine.toml")
     assert result.exit_code == 2
