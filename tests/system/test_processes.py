@@ -188,3 +188,11 @@ def test_the_installed_command_runs_on_the_bundled_model_from_anywhere(installed
     app = first_picture([str(installed / "biceps")], cwd=tmp_path, keys=b"q")
     assert b"biceps.toml" in app.output
     assert app.exit_code == 0
+    # The other bundled models by name, as README.md and the help give them, and the app.
+    for name in ("elbow", "configs/elbow.toml"):
+        elbow = biceps("info", name)
+        assert elbow.returncode == 0, elbow.stderr
+        assert "TRIlong" in elbow.stdout
+    app = first_picture([str(installed / "biceps"), "elbow"], cwd=tmp_path, keys=b"q")
+    assert b"elbow.toml" in app.output
+    assert app.exit_code == 0
