@@ -625,7 +625,9 @@ class BicepsApp(App[None]):
         """
         answers = [
             Answer("s", f"Save, then {doing}", "save", "primary"),
-            Answer("d", "Discard", "discard", "error"),
+            # Not "d" for discard: d moves the model, and a move key held or typed a moment
+            # too long after a slip onto q would answer the question it did not read.
+            Answer("n", "Don't save", "discard", "error"),
         ]
         question = f"{printable(self.config.path.name)} has unsaved edits."
         answer = await self.push_screen_wait(Choice("Unsaved edits", question, answers))

@@ -156,7 +156,7 @@ async def test_opening_over_unsaved_edits_asks_first(biceps):
         assert session.app.scene.arm.length == 32.9
         await session.pilot.press("ctrl+o")
         await _answer(session, str(BUNDLED / "toy.toml"))
-        await session.pilot.press("d")
+        await session.pilot.press("n")
         assert session.app.scene.arm.muscle.node_count == 4
 
 
@@ -243,8 +243,18 @@ async def test_quit_with_unsaved_edits_asks_and_waits_for_an_answer(biceps, conf
         await session.pilot.press("escape")
         assert session.app.return_code is None
         assert session.app.scene.arm.length == 32.9
-        await session.pilot.press("ctrl+q", "d")
+        await session.pilot.press("ctrl+q", "n")
         assert session.app.return_code == 0
+    assert config_path.read_text() == original
+
+
+async def test_keys_that_move_the_model_do_not_answer_the_quit_question(biceps, config_path):
+    # Moving with d (or w, a, s) and slipping onto q: the next d must not drop the edits.
+    original = config_path.read_text()
+    async with biceps() as session:
+        await session.pilot.press("c", "d", "q", "d", "a", "w")
+        assert isinstance(session.app.screen, Choice)
+        assert session.app.return_code is None
     assert config_path.read_text() == original
 
 
