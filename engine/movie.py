@@ -33,7 +33,7 @@ MP4_CODEC = "libx264"  # H.264, which every player plays
 MP4_CRF = 18  # x264's constant quality: about what the eye cannot tell from the frames
 BT709 = 1  # FFmpeg's number for ITU-R BT.709 colour (primaries, transfer and matrix alike)
 
-VIDEO_EXTRA = "pip install 'biceps[video]'"
+VIDEO_EXTRA = "pip install 'biceps[video]' (installed with pipx: pipx inject biceps av)"
 
 Progress = Callable[[int, int], None]
 """Told ``(done, total)`` after each step of a long job: a frame rendered or encoded."""
