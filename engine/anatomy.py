@@ -27,9 +27,11 @@ PARTS = ("muscle", *BONES)
 """A single-muscle arm's parts."""
 
 
-def arm_parts(arm: Arm, segments: int, hidden: frozenset[str] = frozenset()) -> dict[str, Mesh]:
+def arm_parts(arm: Arm, segments: int, hidden: frozenset[str] = frozenset(),
+              companion_segments: int | None = None) -> dict[str, Mesh]:
     """The arm in its current pose, by part: each muscle not ``hidden`` by its name (see
-    :attr:`Arm.names`), then the bones (``BONES``), world space.
+    :attr:`Arm.names`), then the bones (``BONES``), world space; ``segments`` round each,
+    or ``companion_segments`` round the companions (the driver's, if None).
 
     The muscles are laid on the bones one at a time, deepest first: the companions in their
     order, then the driver over them; each keeps clear of the bones and of those laid
@@ -41,8 +43,9 @@ def arm_parts(arm: Arm, segments: int, hidden: frozenset[str] = frozenset()) -> 
     laid = {}
     for index, lean in zip(laying_order(arm), arm_leans(arm)):
         centres, radii = spheres
+        around = segments if index == 0 or companion_segments is None else companion_segments
         mesh, (more_centres, more_radii) = muscle_part(
-            arm.muscles[index], arm.paths[index], pose.flexion, spheres, segments, lean)
+            arm.muscles[index], arm.paths[index], pose.flexion, spheres, around, lean)
         laid[arm.names[index]] = mesh
         spheres = np.concatenate([centres, more_centres]), np.concatenate([radii, more_radii])
     parts = {name: laid[name] for name in arm.names if name not in hidden}
