@@ -261,7 +261,14 @@ def _cuts(points, radius, axes, centres, sphere_radii):
     # Each sphere's centre above each section's plane. Only the pairs where the sphere cuts
     # the section's plane can block; with several muscles laid few do, and of those fewer
     # reach the disc: the work below is on those pairs alone, as flat arrays.
-    height = np.einsum("kc,mc->mk", centres, axes) - np.einsum("mc,mc->m", points, axes)[:, None]
+    # The spheres' heights along each distinct axis, once: the sections of a straight
+    # stretch share theirs, so a path has one or two runs of them but for a bend's arc;
+    # (m, k) products cost 0.05 to 0.1 ms a muscle, a fifth of its clearance. The same
+    # einsum on fewer rows gives the same bits.
+    first = np.ones(len(axes), dtype=bool)
+    first[1:] = np.any(axes[1:] != axes[:-1], axis=1)
+    height = (np.einsum("kc,uc->uk", centres, axes[first])[np.cumsum(first) - 1]
+              - np.einsum("mc,mc->m", points, axes)[:, None])
     section, sphere = np.nonzero(np.abs(height) < sphere_radii[None, :])
     height = height[section, sphere]
     in_plane = centres[sphere] - points[section] - height[:, None] * axes[section]
