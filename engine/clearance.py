@@ -209,7 +209,10 @@ def reach(centres: np.ndarray, radii: np.ndarray) -> float:
 def _turned(sides: np.ndarray, axes: np.ndarray) -> np.ndarray:
     """(m, 3) the unit ``sides`` (m, 3) turned a quarter about the unit ``axes``, towards
     the arm's outside (``+z``)."""
-    turned = np.cross(axes, sides)
+    # np.cross's own formula, written out (the same bits): its checks and axis moves cost
+    # more than the arithmetic on a muscle's few dozen sections, 0.07 ms of the six's pose.
+    (ax, ay, az), (sx, sy, sz) = axes.T, sides.T
+    turned = np.column_stack([ay * sz - az * sy, az * sx - ax * sz, ax * sy - ay * sx])
     return turned * np.where(turned[:, 2:] < 0.0, -1.0, 1.0)
 
 
