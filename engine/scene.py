@@ -85,11 +85,11 @@ class Scene:
 
 COMPANION_DETAIL = 2 / 3
 """The share of the render's segments drawn round each companion (48 -> 32): the pictures'
-level of detail, never the exported meshes'. A ring of 32 misses the true circle by
-r (1 - cos(360 / 64 degrees)), 0.012 cm for the thickest companion (2.5 cm): a third of a
-pixel at 1080p with the arm filling the picture; shaded with the normals of the circle, the
-outline is what shows it, and it does not show. Volumes are the nodes' (SPEC 2), whatever
-the mesh. The six at 1080p draw 51,000 triangles instead of 65,000."""
+level of detail, never the exported meshes'. A ring of 32 misses its circle by
+r (1 - cos(360 / 64 degrees)), 0.012 cm for the thickest companion (2.6 cm contracted), a
+few tenths of a pixel at 1080p with the arm filling the picture; shaded with the circle's
+normals, only the outline could show it, and side by side it does not. Volumes are the
+nodes' (SPEC 2), whatever the mesh. The six at 1080p: 51,136 triangles, not 64,800."""
 
 
 def companion_segments(segments: int) -> int:
