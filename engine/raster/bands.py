@@ -29,10 +29,12 @@ import numpy as np
 from biceps.engine.settings import drawing_threads
 
 
-SMALL_PICTURE = 32_000
-"""Pixels below which a frame is drawn in one band, on the calling thread: handing a band
-to another thread and waiting for it costs tens of microseconds, as much as drawing a
-small picture."""
+SMALL_PICTURE = 100_000
+"""Pixels (supersampled) below which a frame is drawn in one band, on the calling thread:
+handing a band to another thread and waiting for it costs about as much as drawing a small
+picture. The app's picture at 200x60 cells (about 72,000 pixels at 2x2) drawn in one band
+took 0.3 ms less CPU a frame under a held key than in two, with no later a picture
+(``benchmarks/app_profile.py``, ``benchmarks/tui_pty.py``)."""
 
 HITS = 4096
 """The pixels Phong lists before it lights them (``engine/raster/shading.py``), at least:

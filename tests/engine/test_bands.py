@@ -6,7 +6,7 @@ import pytest
 from biceps.engine import raster
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.errors import SettingError
-from biceps.engine.raster.bands import Bands, default_threads
+from biceps.engine.raster.bands import SMALL_PICTURE, Bands, default_threads
 from biceps.engine.render import Renderer
 from biceps.engine.scene import (Scene, outline, scene_mesh, supersampling, view_camera,
                                  zoomed_light)
@@ -22,6 +22,9 @@ SCENES = {
     "phong close-up, clipped": {"render": {"shading": "phong"},
                                 "view": {"scale": 9.0, "yaw": 40.0}},
 }
+WIDTH, HEIGHT = 401, 271
+"""Odd, so that the bands are of different heights, and above `SMALL_PICTURE` pixels even
+drawn once a pixel, so that the picture is drawn in bands."""
 
 
 def frame(scene: Scene, renderer: Renderer, width: int, height: int) -> np.ndarray:
@@ -40,10 +43,9 @@ def test_several_threads_draw_the_picture_one_thread_draws(name, threads):
     changes = SCENES[name]
     scene = Scene.of(load_config(DEFAULT_CONFIG))
     scene = scene.with_render(**changes.get("render", {})).with_view(**changes.get("view", {}))
-    width, height = 301, 171  # odd, so that the bands are of different heights
     alone, together = Renderer(threads=1), Renderer(threads=threads)
-    expected = frame(scene, alone, width, height)
-    drawn = frame(scene, together, width, height)
+    expected = frame(scene, alone, WIDTH, HEIGHT)
+    drawn = frame(scene, together, WIDTH, HEIGHT)
     assert len(together._bands.rows) == threads  # it was drawn in bands
     assert np.count_nonzero(expected) > 1000  # something drawn (on black)
     np.testing.assert_array_equal(drawn, expected)
@@ -55,8 +57,8 @@ def test_threads_sharing_the_vertices_draw_the_picture_one_thread_draws(monkeypa
     changes = SCENES[name]
     scene = Scene.of(load_config(DEFAULT_CONFIG))
     scene = scene.with_render(**changes.get("render", {})).with_view(**changes.get("view", {}))
-    expected = frame(scene, Renderer(threads=1), 301, 171)
-    drawn = frame(scene, Renderer(threads=3), 301, 171)
+    expected = frame(scene, Renderer(threads=1), WIDTH, HEIGHT)
+    drawn = frame(scene, Renderer(threads=3), WIDTH, HEIGHT)
     assert np.count_nonzero(expected) > 1000
     np.testing.assert_array_equal(drawn, expected)
 
