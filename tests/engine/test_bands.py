@@ -6,7 +6,7 @@ import pytest
 from biceps.engine import raster
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.errors import SettingError
-from biceps.engine.raster.bands import SMALL_PICTURE, Bands, default_threads
+from biceps.engine.raster.bands import Bands, default_threads
 from biceps.engine.render import Renderer
 from biceps.engine.scene import (Scene, outline, scene_mesh, supersampling, view_camera,
                                  zoomed_light)
@@ -23,8 +23,8 @@ SCENES = {
                                 "view": {"scale": 9.0, "yaw": 40.0}},
 }
 WIDTH, HEIGHT = 401, 271
-"""Odd, so that the bands are of different heights, and above `SMALL_PICTURE` pixels even
-drawn once a pixel, so that the picture is drawn in bands."""
+"""Odd, so that the bands are of different heights; more than `bands.SMALL_PICTURE`
+pixels even drawn once a pixel, so that the picture is drawn in bands."""
 
 
 def frame(scene: Scene, renderer: Renderer, width: int, height: int) -> np.ndarray:
