@@ -63,6 +63,19 @@ def test_threads_sharing_the_vertices_draw_the_picture_one_thread_draws(monkeypa
     np.testing.assert_array_equal(drawn, expected)
 
 
+def test_a_renderer_that_drew_another_view_draws_what_a_fresh_one_draws():
+    # It keeps the last camera's matrices and the last model's normals: a new view, a
+    # light moved or the model turned must not draw with the old ones.
+    base = Scene.of(load_config(DEFAULT_CONFIG))
+    views = [base, base.with_view(scale=9.0, yaw=40.0), base.with_view(yaw=10.0),
+             base.with_light(position=(-80.0, 20.0, 60.0)), base]
+    renderer = Renderer(threads=1)
+    drawn = [frame(scene, renderer, 160, 96) for scene in views]
+    for scene, picture in zip(views, drawn):
+        np.testing.assert_array_equal(picture, frame(scene, Renderer(threads=1), 160, 96))
+    assert not np.array_equal(drawn[0], drawn[1])
+
+
 def test_a_band_holds_exactly_the_spans_of_its_rows():
     triangle = (5 * 256 + 17, 3 * 256 + 5, 2 * 256 + 99, 40 * 256 + 200, 37 * 256 + 3, 29 * 256)
     whole_lo, whole_hi = np.zeros(48, np.int64), np.zeros(48, np.int64)
