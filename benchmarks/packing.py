@@ -41,7 +41,8 @@ def measure() -> dict[str, float]:
             start = time.process_time()
             scene_mesh(arm.stepped(-0.1 * (i % 5 + 1))[0], config.render)
             steps.append(time.process_time() - start)
-            edited = arm.with_muscle(arm.muscle.with_radius(5, arm.muscle.radii[5] + 0.001 * (i + 1)))
+            radius = arm.muscle.radii[5] + 0.001 * (i + 1)  # a new shape: leans chosen anew
+            edited = arm.with_muscle(arm.muscle.with_radius(5, radius))
             start = time.process_time()
             scene_mesh(edited, config.render)
             edits.append(time.process_time() - start)
