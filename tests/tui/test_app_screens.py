@@ -57,6 +57,18 @@ async def test_a_terminal_too_small_gets_a_message_instead_of_the_layout(biceps,
         assert render_sizes[-1] == (viewport.size.width, 2 * viewport.size.height)
 
 
+async def test_a_terminal_shrunk_too_small_clears_the_notes_over_its_message(biceps):
+    async with biceps() as session:
+        # The notes the app holds (run_test shows them as no toasts; Textual 8's own list).
+        await session.pilot.press("b")  # a note: what the strain colours mean
+        await session.settle()
+        assert len(session.app._notifications) == 1
+        await session.pilot.resize_terminal(30, 8)
+        await session.settle()
+        assert session.app.screen.has_class("-too-small")
+        assert len(session.app._notifications) == 0
+
+
 @pytest.mark.parametrize("key", ["question_mark", "f1"])
 async def test_help_opens_and_closes(biceps, key):
     async with biceps() as session:

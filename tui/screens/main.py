@@ -81,6 +81,8 @@ class MainScreen(Screen[None]):
         if too_small and not self.too_small:
             # Hidden, the focused widget loses the focus: give it back when it shows again.
             self._focused_before = self.focused
+            # Notes about what was on screen would cover the message that says to grow it.
+            self.app.clear_notifications()
         elif self.too_small and not too_small:
             self.call_after_refresh(self._refocus)
         self.set_class(too_small, "-too-small")
