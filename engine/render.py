@@ -174,7 +174,7 @@ class Renderer:
     def _camera_and_light(self, camera: Camera, light: Light, aspect: float) -> tuple:
         """The view-projection matrix and the kernels' lighting for this frame."""
         key, seen = self._seen
-        if key != (camera, light, aspect):
+        if not _equal(key, (camera, light, aspect)):
             view_projection = camera.projection_matrix(aspect) @ camera.view_matrix()
             seen = (view_projection, _lighting(light, camera))
             self._seen = ((camera, light, aspect), seen)
@@ -280,6 +280,15 @@ def _lighting(light: Light, camera: Camera) -> raster.Lighting:
         ambient=float(light.ambient), diffuse=float(light.diffuse), specular=specular,
         shininess=shininess, highlight_threshold=raster.highlight_threshold(specular, shininess),
     )
+
+
+def _equal(kept, given) -> bool:
+    """Whether ``kept == given``, False where the comparison has no single answer (a
+    camera given arrays rather than tuples compares them element by element)."""
+    try:
+        return bool(kept == given)
+    except ValueError:
+        return False
 
 
 def _normal_matrix(model: np.ndarray) -> np.ndarray:
