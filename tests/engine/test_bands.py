@@ -124,3 +124,20 @@ def test_a_thread_count_that_is_no_whole_number_from_1_is_refused_in_words(monke
 def test_a_renderer_refuses_a_thread_count_that_is_not_a_positive_integer(threads):
     with pytest.raises(ValueError, match="threads"):
         Bands(threads)
+
+
+def test_a_camera_given_arrays_is_drawn_and_its_move_seen():
+    # The renderer compares each camera with the last one; arrays compare element-wise.
+    vertices = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    normals = np.array([[0.0, 0.0, 1.0]] * 3)
+    triangle = np.array([[0, 1, 2]], np.int32)
+    albedo = np.ones((3, 3), np.float32)
+    renderer = Renderer(threads=1)
+
+    def drawn(eye):
+        return renderer.render(vertices, normals, triangle, albedo, np.eye(4),
+                               Camera(eye=eye), Light(), 32, 32).copy()
+
+    near = drawn((0.0, 0.0, 5.0))
+    np.testing.assert_array_equal(drawn(np.array([0.0, 0.0, 5.0])), near)
+    assert np.count_nonzero(drawn(np.array([0.0, 0.0, 6.0]))) < np.count_nonzero(near)
