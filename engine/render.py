@@ -143,10 +143,7 @@ class Renderer:
         ``shading`` (returned: (a, n) float64); a large mesh's vertices shared among the
         threads, each a range of them through every kernel."""
         attributes = self._attributes(shading)
-        key, normals = self._normals_of
-        if key != model.tobytes():
-            normals = _normal_matrix(model)
-            self._normals_of = (model.tobytes(), normals)
+        normals = self._normal_matrix(model)
         position = np.asarray(light.position, dtype=np.float64)
         albedo = np.asarray(albedo)
 
@@ -179,6 +176,13 @@ class Renderer:
             seen = (view_projection, _lighting(light, camera))
             self._seen = ((camera, light, aspect), seen)
         return seen
+
+    def _normal_matrix(self, model: np.ndarray) -> np.ndarray:
+        """`_normal_matrix` of ``model``, kept for the frames that follow with the same."""
+        key = model.tobytes()
+        if self._normals_of[0] != key:
+            self._normals_of = (key, _normal_matrix(model))
+        return self._normals_of[1]
 
     def _attributes(self, shading: str) -> np.ndarray:
         """The buffer of what the rasterizer interpolates for ``shading``."""
