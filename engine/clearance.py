@@ -46,13 +46,6 @@ TURN = 3.0  # cm before a bend over which a leaning muscle's moves turn across t
 _ROUNDS = 24  # passes over the intervals; each lifts a section past one more bone
 
 
-def forward(start: np.ndarray, end: np.ndarray) -> np.ndarray:
-    """(3,) the unit direction, perpendicular to the muscle's line and to the elbow's axis
-    (``z``), on the side away from the elbow (the origin of world space): the flexor side."""
-    axis = (end - start) / np.linalg.norm(end - start)
-    return _sides(start[None, :], axis[None, :])[0]
-
-
 def _sides(points: np.ndarray, axes: np.ndarray) -> np.ndarray:
     """(m, 3) for each section (centre and unit axis (m, 3) each) the unit direction across
     its axis and the elbow's, on the side away from the elbow. Sections of one straight line
@@ -137,11 +130,11 @@ def _bend_leans(near: np.ndarray | None, count: int, lean: float) -> np.ndarray:
     return leans + (np.copysign(np.pi / 2, lean) - leans) * share
 
 
-def _smoothed(along, near, shift, across=None, one_bulge: bool = False) -> np.ndarray:
+def _smoothed(along, near, shift, across, one_bulge: bool = False) -> np.ndarray:
     """(m,) how far the sections move, given their places ``along`` the path (m,), their
     distances from a bend (``near``, see `_from_bend`) and the least moves (m,) that clear
     them (see `path_offsets`); ``across`` (m,) is the share of each move that lies in the
-    plane of a bend (all of it if None)."""
+    plane of a bend."""
     length = along[-1]
     shift = shift.copy()
     shift[(along < HOLD) | (along > length - HOLD)] = 0.0
@@ -156,7 +149,6 @@ def _smoothed(along, near, shift, across=None, one_bulge: bool = False) -> np.nd
                             np.maximum.accumulate(smooth[::-1])[::-1])
     smooth[[0, -1]] = 0.0  # the attachments themselves stay on the bone
     if near is not None:
-        across = np.ones(len(points)) if across is None else across
         with np.errstate(divide="ignore"):
             smooth = np.minimum(smooth, np.where(across > 1e-9, SLOPE * near / across, np.inf))
     return smooth
