@@ -40,15 +40,16 @@ def arm_parts(arm: Arm, segments: int, hidden: frozenset[str] = frozenset(),
     """
     pose, skeleton = arm.pose, arm.skeleton
     spheres = bone_spheres(skeleton, pose)
+    names, muscles, paths = arm.names, arm.muscles, arm.paths  # properties: built per read
     laid = {}
     for index, lean in zip(laying_order(arm), arm_leans(arm)):
         centres, radii = spheres
         around = segments if index == 0 or companion_segments is None else companion_segments
         mesh, (more_centres, more_radii) = muscle_part(
-            arm.muscles[index], arm.paths[index], pose.flexion, spheres, around, lean)
-        laid[arm.names[index]] = mesh
+            muscles[index], paths[index], pose.flexion, spheres, around, lean)
+        laid[names[index]] = mesh
         spheres = np.concatenate([centres, more_centres]), np.concatenate([radii, more_radii])
-    parts = {name: laid[name] for name in arm.names if name not in hidden}
+    parts = {name: laid[name] for name in names if name not in hidden}
     return {**parts, **bone_meshes(skeleton, pose, segments)}
 
 
