@@ -27,10 +27,10 @@ from rich.style import Style
 from textual.geometry import Size
 from textual.strip import Strip
 
-from biceps.engine.jit import helper, ngjit
+from biceps.engine.jit import ngjit
 from biceps.tui.encoder import Picture
 from biceps.tui.prerendered import RESET, PrerenderedStrip, codes
-from biceps.tui.sgr import put_number
+from biceps.tui.sgr import RGB, put_colour
 
 UPPER_HALF = "▀"
 BOTTOM = (1 << 24) - 1  # a cell's bottom pixel, as packed below
@@ -111,10 +111,10 @@ def write_lines(cells, changed, starts, counts, half, out, ends):
                 out[at], out[at + 1] = 27, 91  # ESC [
                 at += 2
                 if top != bottom:
-                    at = _put_rgb(out, at, 38, top)
+                    at = put_colour(out, at, RGB | top, True)
                     out[at] = 59  # ;
                     at += 1
-                at = _put_rgb(out, at, 48, bottom)
+                at = put_colour(out, at, RGB | bottom, False)
                 out[at] = 109  # m
                 at += 1
                 for _ in range(end - start):
@@ -128,18 +128,6 @@ def write_lines(cells, changed, starts, counts, half, out, ends):
                 out[at], out[at + 1], out[at + 2], out[at + 3] = 27, 91, 48, 109  # ESC [ 0 m
                 at += 4
         ends[y] = at
-
-
-@helper
-def _put_rgb(out, at, code, rgb):
-    """Write ``code;2;r;g;b`` at ``out[at:]``; return where it ends."""
-    at = put_number(out, at, code)
-    out[at], out[at + 1] = 59, 50  # ;2
-    at += 2
-    for shift in (16, 8, 0):
-        out[at] = 59
-        at = put_number(out, at + 1, (rgb >> shift) & 0xFF)
-    return at
 
 
 class _Made(dict):

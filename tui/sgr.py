@@ -64,7 +64,7 @@ def put_number(out, at, number):
 
 
 @helper
-def _put_colour(out, at, colour, foreground):
+def put_colour(out, at, colour, foreground):
     """Write the codes of ``colour`` (packed as above); return where they end."""
     kind, value = colour & ~VALUE, colour & VALUE
     if kind == BASIC:
@@ -108,7 +108,7 @@ def _put_sgr(out, at, sent, wanted, attributes, reset):
             if at > start + 2:
                 out[at] = 59
                 at += 1
-            at = _put_colour(out, at, wanted[index], index == 1)
+            at = put_colour(out, at, wanted[index], index == 1)
     out[at] = 109  # m
     return at + 1
 
