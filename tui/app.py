@@ -476,17 +476,18 @@ class BicepsApp(App[None]):
         self._saved = saved
         self.sub_title = printable(config.path.name)
 
-    def _config_file_field(self) -> Field:
-        path = self.config.path
-        if _bundled(path):
-            path = Path.cwd() / path.name  # a copy of one's own, where one works
+    def _config_file_field(self, path: Path) -> Field:
+        """The dialogs' field for a configuration file, ``path`` to start with."""
         return Field("File", printable(path), parse_path, PathSuggester((".toml",)))
 
     def action_save_as(self) -> None:
         self._ask(self._save_as)
 
     async def _save_as(self) -> bool:
-        field = self._config_file_field()
+        path = self.config.path
+        if _bundled(path):
+            path = Path.cwd() / path.name  # a copy of one's own, where one works
+        field = self._config_file_field(path)
         while True:
             answer = await self.push_screen_wait(
                 Prompt("Save as", [field], accept="Save",
@@ -507,8 +508,7 @@ class BicepsApp(App[None]):
     async def _open(self) -> None:
         # The file open now, to change: a bundled model's own path, for there is nothing
         # else to open where one works; a bundled model may be named (toy, configs/toy.toml).
-        field = Field("File", printable(self.config.path), parse_path,
-                      PathSuggester((".toml",)))
+        field = self._config_file_field(self.config.path)
         answer = await self.push_screen_wait(
             Prompt("Open a configuration", [field], accept="Open"))
         if answer is None:
