@@ -1,4 +1,5 @@
-"""The hand-over between the UI and the render thread keeps only the latest request."""
+"""The hand-over between the UI and the render thread keeps only the latest request, and
+hands results over one at a time."""
 
 import threading
 
@@ -12,19 +13,37 @@ def test_a_new_item_replaces_one_not_yet_taken():
     assert box.take() == 4
 
 
-def test_the_next_item_waits_until_the_last_one_is_done():
+def test_the_next_item_is_taken_while_the_last_result_is_in_use():
     box = LatestOnly()
     box.put("first")
     assert box.take() == "first"
+    assert box.hand_over()
     box.put("second")
-    taken = []
-    worker = threading.Thread(target=lambda: taken.append(box.take()))
+    assert box.take() == "second"  # to work on ahead: the UI is not done with "first"
+
+
+def test_the_next_result_waits_until_the_last_one_is_done():
+    box = LatestOnly()
+    assert box.hand_over()
+    handed = []
+    worker = threading.Thread(target=lambda: handed.append(box.hand_over()))
     worker.start()
     worker.join(0.05)
-    assert taken == []  # the first one's result has not been used yet
+    assert handed == []  # the first result has not been used yet
     box.done()
     worker.join()
-    assert taken == ["second"]
+    assert handed == [True]
+
+
+def test_newer_takes_only_what_was_put_since_without_waiting():
+    box = LatestOnly()
+    box.put("first")
+    box.take()
+    assert box.newer() is None
+    box.put("second")
+    box.put("third")
+    assert box.newer() == "third"
+    assert box.newer() is None
 
 
 def test_closing_releases_a_waiting_worker():
@@ -35,3 +54,14 @@ def test_closing_releases_a_waiting_worker():
     box.close()
     worker.join()
     assert taken == [None]
+
+
+def test_closing_releases_a_worker_waiting_to_hand_over():
+    box = LatestOnly()
+    assert box.hand_over()
+    handed = []
+    worker = threading.Thread(target=lambda: handed.append(box.hand_over()))
+    worker.start()
+    box.close()
+    worker.join()
+    assert handed == [False]

@@ -1,5 +1,5 @@
-"""Flow control: the next frame waits for the terminal to answer, or for the cap; and
-nothing the app does of itself holds it back for long."""
+"""Flow control: the next frame waits for the terminal to answer, or for the cap; it is
+drawn meanwhile, and nothing the app does of itself holds it back for long."""
 
 from __future__ import annotations
 
@@ -10,8 +10,11 @@ from click.testing import CliRunner
 from textual import events
 
 import biceps.tui.pacing
+import biceps.tui.widgets.viewport
 from biceps.cli import main
+from biceps.engine.scene import SceneRenderer
 from biceps.tui.app import OLDEST_COLLECTED_AFTER, BicepsApp
+from biceps.tui.changes import TURN_STEP
 from biceps.tui.pacing import Pacer, cursor_question
 from biceps.tui.widgets.viewport import Viewport
 from waiting import until
@@ -170,7 +173,8 @@ def test_the_cap_applies_after_the_answer_too(timers):
     assert released == [1, 2]
 
 
-# The gate in the app: the render thread takes the next scene only once the terminal answers.
+# The gate in the app: the render thread hands the next frame over only once the terminal
+# answers, and draws it meanwhile.
 
 
 class Terminal:
@@ -207,7 +211,7 @@ async def _a_while(pilot) -> None:
         await pilot.pause(0.01)
 
 
-async def test_no_frame_is_made_until_the_terminal_has_taken_the_last(config):
+async def test_no_frame_is_shown_until_the_terminal_has_taken_the_last(config):
     app = BicepsApp(config)
     terminal = Terminal(app)
     async with app.run_test(size=(100, 30)) as pilot:
@@ -224,6 +228,72 @@ async def test_no_frame_is_made_until_the_terminal_has_taken_the_last(config):
         terminal.answer()
         await until(pilot, lambda: viewport.up_to_date)
         assert viewport.border_title.startswith(f"yaw {app.scene.view.yaw:g}°")
+
+
+class Draws:
+    """Counts the frames the app's renderers draw."""
+
+    def __init__(self, monkeypatch) -> None:
+        self.count = 0
+        render = SceneRenderer.render
+
+        def counted(renderer, *arguments):
+            self.count += 1
+            return render(renderer, *arguments)
+
+        monkeypatch.setattr(SceneRenderer, "render", counted)
+
+
+async def _waiting_for_an_answer(app, pilot, terminal: Terminal) -> Viewport:
+    """Answer the terminal's questions until the picture on screen is that of the latest
+    scene and the question after it is out, unanswered."""
+    viewport = app.screen.query_one(Viewport)
+    for _ in range(1000):
+        asked = len(terminal.questions) > terminal.answered
+        if asked and viewport.up_to_date:
+            return viewport  # (the question after an earlier frame would hold this one back)
+        if asked:
+            terminal.answer()
+        await pilot.pause(0.01)
+    raise AssertionError("the picture never caught up")
+
+
+async def test_the_next_frame_is_drawn_while_the_terminal_takes_the_last(config, monkeypatch):
+    draws = Draws(monkeypatch)
+    app = BicepsApp(config)
+    terminal = Terminal(app)
+    async with app.run_test(size=(100, 30)) as pilot:
+        viewport = await _waiting_for_an_answer(app, pilot, terminal)
+        shown, drawn = viewport.border_title, draws.count
+        await pilot.press("right")
+        await until(pilot, lambda: draws.count == drawn + 1)  # drawn ahead...
+        await _a_while(pilot)
+        assert viewport.border_title == shown  # ...and kept until the terminal answers
+        terminal.answer()
+        await until(pilot, lambda: viewport.up_to_date)
+        assert viewport.border_title.startswith(f"yaw {app.scene.view.yaw:g}°")
+        assert draws.count == drawn + 1  # shown as drawn, not drawn again
+
+
+@pytest.mark.parametrize("stale_after, first_shown", [(60.0, 1), (0.0, 2)])
+async def test_a_frame_drawn_ahead_too_long_ago_is_drawn_again_from_the_newest_scene(
+        config, monkeypatch, stale_after, first_shown):
+    # Over a slow link the answer takes a while: by then the frame drawn ahead is old, and
+    # if the keys have moved on since, it would show them that late.
+    monkeypatch.setattr(biceps.tui.widgets.viewport, "STALE_AFTER", stale_after)
+    draws = Draws(monkeypatch)
+    app = BicepsApp(config)
+    terminal = Terminal(app)
+    async with app.run_test(size=(100, 30)) as pilot:
+        viewport = await _waiting_for_an_answer(app, pilot, terminal)
+        yaw, drawn = app.scene.view.yaw, draws.count
+        await pilot.press("right")
+        await until(pilot, lambda: draws.count == drawn + 1)
+        await pilot.press("right")  # a newer scene, waiting
+        terminal.answer()
+        await until(pilot, lambda: len(terminal.questions) > terminal.answered)
+        assert viewport.border_title.startswith(f"yaw {yaw + first_shown * TURN_STEP:g}°")
+        assert viewport.up_to_date == (first_shown == 2)
 
 
 async def test_a_terminal_that_never_answers_still_gets_every_frame(config, monkeypatch):

@@ -10,8 +10,9 @@ image, for an encoder that sends one), and a new frame refreshes only the lines 
 changed (none, if the picture is the same). The captions on the border say how the picture
 on screen was made, so they change with it.
 
-The next request is taken only when the :class:`~tui.pacing.Pacer` says the terminal has
-taken the last frame.
+A frame is handed to the UI only when the :class:`~tui.pacing.Pacer` says the terminal has
+taken the last one; meanwhile the worker draws the next (the newest request), so that only
+its encoding is left to do once the terminal has answered (see `STALE_AFTER`).
 
 An encoder of real pixels (``tui/pixels.py``) paints its image over the picture's cells, so
 the image is written only while the viewport's screen is the one shown (a dialog or the
@@ -26,6 +27,7 @@ from dataclasses import dataclass
 from time import monotonic
 from typing import Sequence
 
+import numpy as np
 from rich.color import Color
 from rich.console import Console
 from rich.style import Style
@@ -56,6 +58,14 @@ BUSY_AFTER = 0.3
 being drawn: a first Phong frame compiles its kernels, a muscle of many nodes takes long."""
 BUSY_CAPTION = "drawing…"
 
+STALE_AFTER = 2 / 60
+"""Seconds after which a frame drawn ahead is drawn again if a newer scene is waiting by
+the time the terminal has taken the last frame. A frame waits up to one of Textual's
+updates (a 60th of a second) to be written, and a local terminal answers within a
+millisecond or two: its frames drawn ahead are shown as drawn. Over a slow link the answer
+takes as long as the frame takes to cross it (75 ms for 47 KB at 5 Mbit/s), and a frame
+drawn that long ago would show the keys that late."""
+
 
 @dataclass(frozen=True)
 class _Request:
@@ -63,6 +73,13 @@ class _Request:
     scene: Scene
     width: int  # pixels
     height: int  # pixels
+
+
+@dataclass(frozen=True)
+class _Drawn:
+    request: _Request
+    frame: np.ndarray | Exception  # (h, w, 3) uint8, or what stopped it being drawn
+    at: float  # monotonic seconds
 
 
 class Viewport(Widget, can_focus=True):
@@ -218,21 +235,44 @@ class Viewport(Widget, can_focus=True):
         # Both keep what they need from one frame to the next (buffers, the lines on
         # screen), so they are this thread's own (see PictureEncoder for the exceptions).
         renderer, encoder = SceneRenderer(), self._encoder
-        while (request := self._requests.take()) is not None:
-            try:
-                frame = renderer.render(request.scene, request.width, request.height)
-                if self._palette is not None:
-                    frame = self._palette.mapped(frame, rgb(request.scene.render.background))
-                picture = encoder.encode(frame)
-                message = self.FrameRendered(request.number, request.scene, picture,
-                                             request.height)
-            except Exception as error:
-                # Whatever goes wrong in one frame, the app and the edits must survive it,
-                # and the next scene may well render: report it and carry on. The encoder
-                # may have failed halfway, so what it kept no longer matches the screen.
-                encoder.reset()
-                message = self.RenderFailed(request.number, f"{type(error).__name__}: {error}")
-            self.post_message(message)
+        request = self._requests.take()
+        while request is not None:
+            # Drawn ahead, while the UI waits for the terminal to take the last frame: once
+            # it has, the next is only encoded (every encoded frame is shown, in order: the
+            # encoder sends the rows that changed since the last), not drawn too.
+            drawn = self._drawn(renderer, request)
+            if not self._requests.hand_over():
+                return
+            if (monotonic() - drawn.at > STALE_AFTER
+                    and (newer := self._requests.newer()) is not None):
+                drawn = self._drawn(renderer, newer)
+            self.post_message(self._encoded(encoder, drawn))
+            request = self._requests.take()
+
+    def _drawn(self, renderer: SceneRenderer, request: _Request) -> _Drawn:
+        """The frame of ``request``, valid until ``renderer`` draws again, or the error
+        that stopped it."""
+        try:
+            frame = renderer.render(request.scene, request.width, request.height)
+            if self._palette is not None:
+                frame = self._palette.mapped(frame, rgb(request.scene.render.background))
+        except Exception as error:
+            return _Drawn(request, error, monotonic())
+        return _Drawn(request, frame, monotonic())
+
+    def _encoded(self, encoder: PictureEncoder, drawn: _Drawn) -> Message:
+        request, frame = drawn.request, drawn.frame
+        try:
+            if isinstance(frame, Exception):
+                raise frame
+            return self.FrameRendered(request.number, request.scene, encoder.encode(frame),
+                                      request.height)
+        except Exception as error:
+            # Whatever goes wrong in one frame, the app and the edits must survive it,
+            # and the next scene may well render: report it and carry on. The encoder
+            # may have failed halfway, so what it kept no longer matches the screen.
+            encoder.reset()
+            return self.RenderFailed(request.number, f"{type(error).__name__}: {error}")
 
     def on_viewport_frame_rendered(self, message: FrameRendered) -> None:
         picture = message.picture
