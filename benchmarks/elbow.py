@@ -7,9 +7,14 @@ muscle's.
 
 Rows, each a median over the runs:
 
-- snapshot in the process: a fresh renderer each run (so the meshes are built and the
+- snapshot in the process: a fresh renderer each time (so the meshes are built and the
   buffers allocated, as ``snapshot`` does), the scene posed at 60 degrees and drawn at
-  1920x1080 with the file's settings; the kernels compiled beforehand.
+  1920x1080 with the file's settings; the kernels compiled beforehand. Allocating a
+  1080p picture's buffers costs more or less depending on whether the allocator hands
+  back pages this process has touched already or fresh ones, which swung the ratio of
+  medians from 0.97 to 1.69 between runs: so the two models are drawn in pairs, ``PAIRS``
+  a run, one then the other, in turn first, and the ratio is the median of the pairs'
+  (the times, the medians of all pairs).
 - frame of a flex sweep: one renderer drawing a new pose each run (what ``animate`` pays a
   frame): the pose's meshes, the framing and the drawing, the buffers reused.
 - pose's meshes: the arm contracted by 0.1 cm and its scene mesh built (what a held ``c``
@@ -41,6 +46,7 @@ ROOT = Path(__file__).resolve().parent.parent
 MODELS = {"biceps": ROOT / "configs" / "biceps.toml", "elbow": ROOT / "configs" / "elbow.toml"}
 SIZE = (1920, 1080)
 FLEXION = 60.0
+PAIRS = 5  # snapshots in the process of each model a run, in pairs
 
 
 def posed(path: Path):
@@ -63,6 +69,14 @@ def in_process(path: Path) -> tuple[float, float]:
 
     scene = posed(path)
     return timed(lambda: SceneRenderer().render(scene, *SIZE))
+
+
+def snapshot_pairs(pairs: int) -> list[dict[str, tuple[float, float]]]:
+    """``pairs`` snapshots in the process of each model, by model, each pair drawn one
+    after the other, the first in turn."""
+    names = list(MODELS)
+    return [{name: in_process(MODELS[name]) for name in names[::1 if pair % 2 else -1]}
+            for pair in range(pairs)]
 
 
 class Sweep:
@@ -151,13 +165,18 @@ def main() -> None:
         turns[name].frame()
     output = Path("/tmp/biceps-elbow-benchmark.png")
     times: dict[tuple[str, str], list[tuple[float, float]]] = {}
+    pair_ratios: list[tuple[float, float]] = []  # elbow / biceps of each pair, wall and CPU
 
     def record(what: str, name: str, seconds: tuple[float, float]) -> None:
         times.setdefault((what, name), []).append(seconds)
 
     for _ in range(args.runs):
+        for pair in snapshot_pairs(PAIRS):
+            for name, seconds in pair.items():
+                record("snapshot in the process", name, seconds)
+            pair_ratios.append(tuple(six / one for one, six in zip(*(pair[name]
+                                                                     for name in MODELS))))
         for name, path in MODELS.items():
-            record("snapshot in the process", name, in_process(path))
             record("frame of a flex sweep", name, sweeps[name].frame())
             meshes, clearance = step(path)
             record("pose's meshes", name, meshes)
@@ -166,7 +185,8 @@ def main() -> None:
             if not args.no_command:
                 record("snapshot command", name, command(path, output))
     load = " ".join(f"{value:.2f}" for value in os.getloadavg())
-    print(f"load average {load}; medians of {args.runs}, ms")
+    print(f"load average {load}; medians of {args.runs} ({args.runs * PAIRS} pairs of "
+          f"snapshots in the process), ms")
     print(f"{'':<26}{'wall':>24}{'':>8}{'CPU, every thread':>24}")
     print(f"{'':<26}" + f"{'biceps (1)':>12}{'elbow (6)':>12}{'ratio':>8}" * 2)
     for what in dict.fromkeys(kind for kind, _ in times):
@@ -174,7 +194,10 @@ def main() -> None:
         for clock in (0, 1):
             one, six = (statistics.median(seconds[clock] for seconds in times[what, name])
                         for name in MODELS)
-            ratio = f"{six / one:>8.2f}" if one > 0 else f"{'-':>8}"
+            if what == "snapshot in the process":  # see the module's docstring
+                ratio = f"{statistics.median(pair[clock] for pair in pair_ratios):>8.2f}"
+            else:
+                ratio = f"{six / one:>8.2f}" if one > 0 else f"{'-':>8}"
             row += f"{1000 * one:>12.1f}{1000 * six:>12.1f}{ratio}"
         print(row)
 
