@@ -6,6 +6,14 @@ import threading
 from biceps.tui.latest_only import LatestOnly
 
 
+def _in_a_thread(call) -> tuple[threading.Thread, list]:
+    """``call()`` running in a thread of its own, and the list its result will be put in."""
+    results: list = []
+    worker = threading.Thread(target=lambda: results.append(call()))
+    worker.start()
+    return worker, results
+
+
 def test_a_new_item_replaces_one_not_yet_taken():
     box = LatestOnly()
     for item in range(5):
@@ -25,9 +33,7 @@ def test_the_next_item_is_taken_while_the_last_result_is_in_use():
 def test_the_next_result_waits_until_the_last_one_is_done():
     box = LatestOnly()
     assert box.hand_over()
-    handed = []
-    worker = threading.Thread(target=lambda: handed.append(box.hand_over()))
-    worker.start()
+    worker, handed = _in_a_thread(box.hand_over)
     worker.join(0.05)
     assert handed == []  # the first result has not been used yet
     box.done()
@@ -48,9 +54,7 @@ def test_newer_takes_only_what_was_put_since_without_waiting():
 
 def test_closing_releases_a_waiting_worker():
     box = LatestOnly()
-    taken = []
-    worker = threading.Thread(target=lambda: taken.append(box.take()))
-    worker.start()
+    worker, taken = _in_a_thread(box.take)
     box.close()
     worker.join()
     assert taken == [None]
@@ -59,9 +63,7 @@ def test_closing_releases_a_waiting_worker():
 def test_closing_releases_a_worker_waiting_to_hand_over():
     box = LatestOnly()
     assert box.hand_over()
-    handed = []
-    worker = threading.Thread(target=lambda: handed.append(box.hand_over()))
-    worker.start()
+    worker, handed = _in_a_thread(box.hand_over)
     box.close()
     worker.join()
     assert handed == [False]
