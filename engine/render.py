@@ -116,8 +116,10 @@ class Renderer:
     def prepare(self, shading: str = "gouraud", ssaa: int = 1, *, vertex_stage: bool = True,
                 rasterizer: bool = True) -> None:
         """Compile, or load from numba's cache, the kernels a frame in ``shading`` with
-        ``ssaa`` supersampling runs, or those of one stage (the rasterizer's includes the
-        downsampling), without drawing anything (see ``engine/coldstart.py``).
+        ``ssaa`` supersampling runs, or those of one stage, without drawing anything (see
+        ``engine/coldstart.py``). The downsampling of a supersampled frame comes with
+        either stage: the rasterizer, much the longest to compile, can then be prepared
+        alone (``ssaa`` 1) while the vertex stage and the downsampling are prepared beside.
 
         Each kernel runs once on buffers of the kinds `render` passes it, for one vertex,
         no triangle and one pixel, so that numba makes the very version `render` calls.
@@ -131,11 +133,11 @@ class Renderer:
             self._normals.fill(0.0)
             self._transform(shading, Light(), np.zeros((1, 3), np.float32), np.eye(4),
                             np.eye(4), 1, 1)
-        if rasterizer:
+        if rasterizer or ssaa > 1:
             no_triangles = _read_only(np.zeros((0, 3), np.int32))
-            self._draw(rasterize, [(no_triangles, self._screen_xy, self._screen_z,
-                                    self._screen_q, self._outcodes, self._attributes(shading))],
-                       _lighting(Light(), Camera()), (0, 0, 0))
+            meshes = [(no_triangles, self._screen_xy, self._screen_z, self._screen_q,
+                       self._outcodes, self._attributes(shading))] if rasterizer else []
+            self._draw(rasterize, meshes, _lighting(Light(), Camera()), (0, 0, 0))
 
     def _transform(self, shading, light, albedo, model, view_projection, width, height):
         """The vertex stage, from the vertices and normals copied in: world positions and

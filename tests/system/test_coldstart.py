@@ -1,4 +1,4 @@
-"""A cold start: the kernels compiled ahead of the first frame, two processes at a time."""
+"""A cold start: the kernels compiled ahead of the first frame, in child processes."""
 
 from __future__ import annotations
 
@@ -72,6 +72,52 @@ def test_on_a_cold_cache_the_rasterizer_comes_from_the_second_process(tmp_path):
     assert any("data loaded" in line and "rasterize_gouraud" in line for line in log)
     expected = SceneRenderer().render(Scene.of(load_config(DEFAULT_CONFIG)), 96, 54)
     np.testing.assert_array_equal(np.asarray(Image.open(out)), expected)
+
+
+# Two children that take two seconds, one of them for later, and a probe that compiles (a
+# cold cache) or does not. Prints whether each child finished its job.
+PROBED = """
+import sys, time
+from pathlib import Path
+import numba
+from biceps.engine import coldstart
+
+done, later_done = Path(sys.argv[2]), Path(sys.argv[3])
+coldstart.compile_aside(lambda: (time.sleep(2), done.write_text("done")))
+later = coldstart.compile_later(lambda: (time.sleep(2), later_done.write_text("done")))
+coldstart.try_here_first(numba.njit(lambda: 1) if sys.argv[1] == "cold" else lambda: None)
+coldstart.wait_for_aside()
+later.wait()
+print(done.exists(), later_done.exists())
+"""
+
+
+@pytest.mark.skipif(coldstart._cores() < 2, reason="no second process on one core")
+@pytest.mark.parametrize("cache", ["cold", "warm"])
+def test_children_are_waited_for_on_a_cold_cache_and_stopped_on_a_warm_one(tmp_path, cache):
+    process = subprocess.run([sys.executable, "-c", PROBED, cache, str(tmp_path / "done"),
+                              str(tmp_path / "later")],
+                             capture_output=True, text=True, cwd=ROOT, timeout=60)
+    assert process.returncode == 0, process.stderr
+    assert process.stdout.split() == [str(cache == "cold")] * 2
+
+
+LATER = """
+import os
+from biceps.engine import coldstart
+
+read, write = os.pipe()
+coldstart.compile_later(lambda: os.write(write, str(os.nice(0)).encode())).wait()
+print(os.read(read, 16).decode(), os.nice(0))
+"""
+
+
+@pytest.mark.skipif(coldstart._cores() < 2, reason="no second process on one core")
+def test_what_can_wait_compiles_at_the_lowest_priority():
+    process = subprocess.run([sys.executable, "-c", LATER], capture_output=True, text=True,
+                             cwd=ROOT, timeout=60)
+    assert process.returncode == 0, process.stderr
+    assert process.stdout.split() == [str(coldstart.LATER), "0"]
 
 
 def test_there_is_no_fork_beside_another_thread(monkeypatch):
