@@ -32,7 +32,6 @@ from textual.screen import Screen
 from textual.theme import ThemeProvider
 
 from biceps.configs import FOLDER as BUNDLED_MODELS, file_or_bundled
-from biceps.engine import coldstart
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, load_config, save_config
 from biceps.engine.errors import BicepsError, FileChanged
@@ -41,6 +40,7 @@ from biceps.engine.files import same_file
 from biceps.engine.names import printable
 from biceps.engine.scene import Scene, SceneRenderer
 from biceps.tui import detect
+from biceps.tui.ahead import compile_ahead, lean_once_ready
 from biceps.tui.changes import (
     COARSE_STEP,
     FINE_STEP,
@@ -71,7 +71,6 @@ from biceps.tui.screens.main import MainScreen
 from biceps.tui.screens.once import Palette
 from biceps.tui.screens.prompt import Field, Prompt
 from biceps.tui.screens.record import RecordPrompt, as_recording
-from biceps.tui.sgr import lean
 from biceps.tui.suggest import PathSuggester
 from biceps.tui.terminal_input import read_terminal_leniently
 from biceps.tui.widgets.node_table import NodeTable
@@ -200,9 +199,9 @@ class BicepsApp(App[None]):
 
     def get_driver_class(self) -> type[Driver]:
         # Textual's own driver, reading stray bytes as U+FFFD (tui/terminal_input.py) and
-        # sending only the colour codes that change (tui/sgr.py).
+        # sending only the colour codes that change (tui/sgr.py) once it can (tui/ahead.py).
         read_terminal_leniently()
-        return lean(super().get_driver_class())
+        return lean_once_ready(super().get_driver_class())
 
     def _handle_exception(self, error: Exception) -> None:
         # Textual ends the app on an error nothing caught (there is no public hook for it):
@@ -696,7 +695,7 @@ def _run(config: Config, fps: float | None, compile_aside: bool, graphics: str |
     choice = detect.choose(asked, answers, detect.Place.here())
     encoder = encoder_for(choice, pixel_scale)
     if compile_aside:
-        coldstart.compile_aside(partial(_draw_a_frame, config, encoder))
+        compile_ahead(config, encoder)
     app = BicepsApp(config, fps=fps, encoder=encoder, notice=detect.notice(asked, choice))
     app.run()
     if app.failure is None:
@@ -717,10 +716,3 @@ def rescued(app: BicepsApp, fps: float | None = None) -> BicepsApp | None:
         return None
     return BicepsApp(app.config, fps=fps,
                      rescue=Rescue(app.config, app.scene, app._saved, app.failure or "?"))
-
-
-def _draw_a_frame(config: Config, encoder: PictureEncoder) -> None:
-    """What the render thread does, on a frame of one cell: so numba compiles (or loads)
-    the very kernels it runs."""
-    cell = encoder.cell
-    encoder.encode(SceneRenderer().render(Scene.of(config), cell.width, cell.height))

@@ -74,6 +74,51 @@ def test_on_a_cold_cache_the_rasterizer_comes_from_the_second_process(tmp_path):
     np.testing.assert_array_equal(np.asarray(Image.open(out)), expected)
 
 
+# The app's start on an empty cache (biceps/cli.py, tui/ahead.py), without Textual: the
+# children compile while the render thread probes the cache and waits for them; then the
+# first frame, and the output minimizer once ready, find every kernel made. Prints what
+# numba compiled here in each step.
+APP_FIRST_RUN = """
+import json, sys
+from numba.core import event
+from biceps.engine import coldstart
+from biceps.engine.config import load_config
+from biceps.engine.scene import Scene, SceneRenderer
+from biceps.tui import ahead
+from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.sgr import minimized
+
+def compiled_by(step):
+    with event.install_recorder("numba:compile") as recorder:
+        step()
+    return sorted({e.data["dispatcher"].py_func.__name__ for _, e in recorder.buffer})
+
+config, encoder = load_config(sys.argv[1]), HalfBlocks()
+coldstart.compile_rasterizer_aside(config.render.shading)
+ahead.compile_ahead(config, encoder)
+renderers = []
+waiting = compiled_by(lambda: renderers.append(SceneRenderer()))
+cell = encoder.cell
+frame = compiled_by(lambda: encoder.encode(
+    renderers[0].render(Scene.of(config), 60 * cell.width, 28 * cell.height)))
+assert ahead._minimizer_ready.wait(120)
+minimizer = compiled_by(lambda: minimized("\x1b[1m\x1b[31mA\x1b[0m\x1b[1mB\x1b[0m"))
+print(json.dumps({"waiting": waiting, "frame": frame, "minimizer": minimizer}))
+"""
+
+
+@pytest.mark.skipif(coldstart._cores() < 2, reason="the children need a second core")
+def test_on_a_cold_cache_the_app_loads_what_its_children_compiled(tmp_path):
+    environment = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    process = subprocess.run([sys.executable, "-c", APP_FIRST_RUN, str(DEFAULT_CONFIG)],
+                             capture_output=True, text=True, cwd=ROOT, env=environment,
+                             timeout=300)
+    assert process.returncode == 0, process.stderr
+    # Only the probe, the render thread's part; the children made the rest.
+    assert json.loads(process.stdout) == {"waiting": ["_farthest_along"], "frame": [],
+                                          "minimizer": []}
+
+
 # Two children that take two seconds, one of them for later, and a probe that compiles (a
 # cold cache) or does not. Prints whether each child finished its job.
 PROBED = """

@@ -1,0 +1,88 @@
+"""The app's kernels compiled ahead, on every core, while Textual starts.
+
+On a first run (an empty numba cache) the first picture waits for numba to compile what a
+frame runs, and Textual's first screen for the output minimizer (``tui/sgr.py``). Each
+compiles in a forked child of its own (``engine/coldstart.py``): the rasterizer, much the
+longest, in one, which the command line starts before it loads Textual (``biceps/cli.py``);
+the vertex stage, the downsampling and the encoder in another. The render thread compiles
+the framing's small kernel, waits for both children, then loads what they compiled; with a
+warm cache, the framing's kernel comes from there, and the children are stopped.
+
+The minimizer only saves bytes: its child runs at the lowest priority, so that it takes no
+share of a core from the frame's, and until it is done the app writes Textual's output as
+it is, which the terminal shows the same.
+"""
+
+from __future__ import annotations
+
+import threading
+
+import numpy as np
+from textual.driver import Driver
+
+from biceps.engine import coldstart
+from biceps.engine.config import Config
+from biceps.engine.render import Renderer
+from biceps.engine.scene import outline, supersampling
+from biceps.tui.encoder import PictureEncoder
+from biceps.tui.sgr import lean, minimized
+
+_minimizer_ready = threading.Event()
+_minimizer_ready.set()  # unless a child is compiling it
+
+
+def compile_ahead(config: Config, encoder: PictureEncoder) -> None:
+    """Start the children compiling (or, on a warm cache, loading) the kernels of the
+    app's first frame of ``config`` through ``encoder``, but the rasterizer's (see the
+    module's docstring), and the minimizer's. Call it before any other thread starts (see
+    `coldstart.compile_aside`)."""
+    # A frame of one cell: so small that it is supersampled, as the app's first most
+    # likely is (engine/scene.py).
+    shading = config.render.shading
+    ssaa = supersampling(config.render, encoder.cell.height)
+    coldstart.compile_aside(lambda: _prepare_around_the_rasterizer(shading, ssaa, encoder))
+    minimizer = coldstart.compile_later(_load_minimizer)
+    # The render thread's part, and the probe of a warm cache: framing's small kernel.
+    coldstart.try_here_first(lambda: outline(np.zeros((1, 3))))
+    if minimizer is not None:
+        _minimizer_ready.clear()
+        threading.Thread(target=_load_once_compiled, args=(minimizer,), name="minimizer",
+                         daemon=True).start()
+
+
+def lean_once_ready(driver_class: type[Driver]) -> type[Driver]:
+    """``lean(driver_class)``, writing its output as it is until the minimizer is ready.
+    Textual leaves the terminal in its default state after every write, so either way of
+    writing may follow the other."""
+    lean_class = lean(driver_class)
+
+    class LeanOnceReady(lean_class):
+        def write(self, data: str) -> None:
+            if _minimizer_ready.is_set():
+                super().write(data)
+            else:
+                driver_class.write(self, data)
+
+    LeanOnceReady.__name__ = LeanOnceReady.__qualname__ = lean_class.__name__
+    return LeanOnceReady
+
+
+def _prepare_around_the_rasterizer(shading: str, ssaa: int,
+                                   encoder: PictureEncoder) -> None:
+    """What a frame runs before and after the rasterizer, on buffers of the kinds the
+    render thread passes: the vertex stage, the downsampling and the encoder, given a
+    read-only frame as the renderer returns."""
+    Renderer().prepare(shading, ssaa, rasterizer=False)
+    frame = np.zeros((encoder.cell.height, encoder.cell.width, 3), np.uint8)
+    frame.flags.writeable = False
+    encoder.encode(frame)
+
+
+def _load_minimizer() -> None:
+    minimized("\x1b[1m \x1b[0m")
+
+
+def _load_once_compiled(minimizer: coldstart.Aside) -> None:
+    minimizer.wait()
+    _load_minimizer()
+    _minimizer_ready.set()
