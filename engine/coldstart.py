@@ -6,23 +6,23 @@ other: numba compiles in Python under the GIL, so a thread cannot take half of t
 but a forked child process can. It compiles into the cache, and this process then loads
 from there what the child compiled.
 
-Everything about it is here; the rest of the program makes one call:
+Everything about it is here; the rest of the program makes a few calls:
 
 - ``biceps snapshot`` calls :func:`prepare_kernels`: the child compiles the rasterizer
   while this process compiles the vertex stage. With a warm cache the child would only
   load what the first frame loads anyway, so once the vertex stage has come from the
-  cache the child is stopped rather than waited for (:func:`try_here_first`).
-- The app calls :func:`compile_aside` with the jobs of a frame (``tui/ahead.py``): a child
-  each, compiling while this process starts Textual. Every
+  cache the child is stopped rather than waited for (:func:`stop_aside_if_cached`).
+- The app's command starts the rasterizer's child as soon as it has read its config
+  (:func:`compile_rasterizer_aside`); the app then probes the cache and, if it is cold,
+  gives the rest of a frame's kernels to another child and what it can do without until
+  after the first picture to :func:`compile_later` (``tui/ahead.py``). Every
   :class:`~biceps.engine.scene.SceneRenderer` calls :func:`wait_for_aside` before its
   first frame, so the render thread loads what the children compiled instead of compiling
-  it again beside them. What the app can do without until later, it gives
-  :func:`compile_later`: a child that takes a core only when nothing else wants it.
+  it again beside them.
 """
 
 from __future__ import annotations
 
-import functools
 import gc
 import os
 import signal
@@ -69,10 +69,6 @@ class Aside:
 
 _asides: list[Aside] = []
 """The children started by :func:`compile_aside`, until someone has waited for them."""
-_later: list[Aside] = []
-"""The children started by :func:`compile_later`, until the probe has run."""
-_probe: Callable[[], None] | None = None
-"""The job :func:`wait_for_aside` tries here first (see :func:`try_here_first`)."""
 _asides_lock = threading.Lock()
 
 LATER = 19
@@ -92,9 +88,7 @@ def compile_aside(job: Callable[[], None]) -> Aside | None:
     process, or in one that ends soon after.
 
     The child is kept for :func:`wait_for_aside`, which every renderer calls before its
-    first frame. Call it once for each of the jobs that take long, the longest first:
-    after the first fork this process makes numba ready to compile, and the children
-    forked after it start from there (`_ready_to_compile`).
+    first frame. Call it once for each of the jobs that take long.
     """
     aside = _fork(job, 0)
     if aside is not None:
@@ -107,23 +101,35 @@ def compile_later(job: Callable[[], None]) -> Aside | None:
     """Run ``job`` as :func:`compile_aside` does, but at the lowest priority (niceness
     :data:`LATER`), for kernels wanted after the first picture: the child runs while
     the others leave a core idle, and barely slows them when they do not. Renderers do
-    not wait for it; whoever wants its kernels waits for the child returned, which a warm
-    cache stops as it does the others: on a busy machine it might not run for seconds,
-    where this process loads its kernels from the cache in milliseconds."""
-    aside = _fork(job, LATER)
-    if aside is not None:
-        with _asides_lock:
-            _later.append(aside)
-    return aside
+    not wait for it; whoever wants its kernels waits for the child returned."""
+    return _fork(job, LATER)
 
 
-def try_here_first(probe: Callable[[], None]) -> None:
-    """Have :func:`wait_for_aside` run ``probe``, a small part of the children's work, in
-    the waiting thread first. If numba compiles nothing for it, the cache is warm: the
-    children would only load what this process loads anyway (numba's first load in a
-    process costs a tenth of a second), so they are stopped rather than waited for."""
-    global _probe
-    _probe = probe
+def stop_aside_if_cached(probe: Callable[[], None]) -> bool:
+    """Run ``probe``, a small part of the children's work, here; if numba compiled nothing
+    for it, the cache is warm: stop the children of :func:`compile_aside` (they would only
+    load what this process loads anyway, each spending the tenth of a second numba's
+    first load in a process takes) and return True."""
+    from numba.core import event  # numba, only once a picture is to be made
+
+    try:
+        with event.install_recorder("numba:compile") as compiled:
+            probe()
+    except BaseException:  # an interrupt, say: no use waiting for the children
+        _stop_asides()
+        raise
+    if compiled.buffer:
+        return False
+    _stop_asides()
+    return True
+
+
+def _stop_asides() -> None:
+    with _asides_lock:
+        asides = _asides[:]
+        _asides.clear()
+    for aside in asides:
+        aside.stop()
 
 
 def _fork(job: Callable[[], None], niceness: int) -> Aside | None:
@@ -139,54 +145,20 @@ def _fork(job: Callable[[], None], niceness: int) -> Aside | None:
             job()
         finally:
             os._exit(0)  # never back into the caller's code, its exit handlers or buffers
-    _ready_to_compile()  # once the first child is on its way: the rest start from here
     return Aside(pid)
 
 
 def wait_for_aside() -> None:
     """Return once the children started by :func:`compile_aside`, if any, have ended, so
-    that what they compiled is loaded from the cache rather than compiled again; with a
-    warm cache, once the probe (:func:`try_here_first`) has shown it. Cheap when there
-    are none. A child that never ends is stopped after :meth:`Aside.wait`'s time limit;
-    one whose process quits first finishes its compilation, and the next start is warm."""
-    global _probe
+    that what they compiled is loaded from the cache rather than compiled again. Cheap
+    when there are none. A child that never ends is stopped after :meth:`Aside.wait`'s
+    time limit; one whose process quits first finishes its compilation, and the next start
+    is warm."""
     with _asides_lock:
-        asides, later, probe = _asides[:], _later[:], _probe
+        asides = _asides[:]
         _asides.clear()
-        _later.clear()
-        _probe = None
-    if not asides:
-        return
-    try:
-        warm = probe is not None and _compiles_nothing(probe)
-    except BaseException:  # an interrupt, say: no use waiting for the children
-        warm = True
-        raise
-    finally:
-        for aside in (asides + later) if warm else asides:
-            if warm:
-                aside.stop()
-            else:
-                aside.wait()
-
-
-@functools.cache
-def _ready_to_compile() -> None:
-    """Compile a function of nothing: numba's first compilation in a process makes its
-    target ready (its registries of types and implementations, LLVM), a tenth of a second
-    that children forked after it, and this process, then do not spend again."""
-    import numba
-
-    numba.njit(lambda: None)()
-
-
-def _compiles_nothing(job: Callable[[], None]) -> bool:
-    """Run ``job``; whether numba compiled nothing for it (it all came from the cache)."""
-    from numba.core import event  # numba, only once a picture is to be made
-
-    with event.install_recorder("numba:compile") as compiled:
-        job()
-    return not compiled.buffer
+    for aside in asides:
+        aside.wait()
 
 
 def compile_rasterizer_aside(shading: str) -> Aside | None:
@@ -206,7 +178,7 @@ def prepare_kernels(shading: str, ssaa: int = 1) -> None:
     from biceps.engine.render import Renderer
 
     compile_rasterizer_aside(shading)
-    try_here_first(lambda: Renderer().prepare(shading, ssaa, rasterizer=False))
+    stop_aside_if_cached(lambda: Renderer().prepare(shading, ssaa, rasterizer=False))
     wait_for_aside()
 
 

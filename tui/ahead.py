@@ -3,10 +3,11 @@
 On a first run (an empty numba cache) the first picture waits for numba to compile what a
 frame runs, and Textual's first screen for the output minimizer (``tui/sgr.py``). Each
 compiles in a forked child of its own (``engine/coldstart.py``): the rasterizer, much the
-longest, in one, which the command line starts before it loads Textual (``biceps/cli.py``);
-the vertex stage, the downsampling and the encoder in another. The render thread compiles
-the framing's small kernel, waits for both children, then loads what they compiled; with a
-warm cache, the framing's kernel comes from there, and the children are stopped.
+longest, in one, which the command line starts as soon as it has read the config
+(``biceps/cli.py``); the vertex stage, the downsampling and the encoder in another. This
+process first compiles the framing's small kernel, which also tells a warm cache from a
+cold one: with a warm cache no other child starts, and the rasterizer's is stopped. The
+render thread waits for the children and loads what they compiled.
 
 The minimizer only saves bytes: its child runs at the lowest priority, so that it takes no
 share of a core from the frame's, and until it is done the app writes Textual's output as
@@ -32,18 +33,18 @@ _minimizer_ready.set()  # unless a child is compiling it
 
 
 def compile_ahead(config: Config, encoder: PictureEncoder) -> None:
-    """Start the children compiling (or, on a warm cache, loading) the kernels of the
-    app's first frame of ``config`` through ``encoder``, but the rasterizer's (see the
-    module's docstring), and the minimizer's. Call it before any other thread starts (see
-    `coldstart.compile_aside`)."""
+    """Once the rasterizer's child is on its way (see the module's docstring), probe the
+    cache with the framing's kernel; if it is cold, start the children compiling the rest
+    of the app's first frame of ``config`` through ``encoder``, and the minimizer. Call it
+    before any other thread starts (see `coldstart.compile_aside`)."""
+    if coldstart.stop_aside_if_cached(lambda: outline(np.zeros((1, 3)))):
+        return  # this process loads the kernels as it goes, in milliseconds
     # A frame of one cell: so small that it is supersampled, as the app's first most
     # likely is (engine/scene.py).
     shading = config.render.shading
     ssaa = supersampling(config.render, encoder.cell.height)
     coldstart.compile_aside(lambda: _prepare_around_the_rasterizer(shading, ssaa, encoder))
     minimizer = coldstart.compile_later(_load_minimizer)
-    # The render thread's part, and the probe of a warm cache: framing's small kernel.
-    coldstart.try_here_first(lambda: outline(np.zeros((1, 3))))
     if minimizer is not None:
         _minimizer_ready.clear()
         threading.Thread(target=_load_once_compiled, args=(minimizer,), name="minimizer",

@@ -75,8 +75,8 @@ def test_on_a_cold_cache_the_rasterizer_comes_from_the_second_process(tmp_path):
 
 
 # The app's start on an empty cache (biceps/cli.py, tui/ahead.py), without Textual: the
-# children compile while the render thread probes the cache and waits for them; then the
-# first frame, and the output minimizer once ready, find every kernel made. Prints what
+# children compile, this process compiles the probe; the render thread waits for them; then
+# the first frame, and the output minimizer once ready, find every kernel made. Prints what
 # numba compiled here in each step.
 APP_FIRST_RUN = """
 import json, sys
@@ -95,7 +95,7 @@ def compiled_by(step):
 
 config, encoder = load_config(sys.argv[1]), HalfBlocks()
 coldstart.compile_rasterizer_aside(config.render.shading)
-ahead.compile_ahead(config, encoder)
+ahead_ = compiled_by(lambda: ahead.compile_ahead(config, encoder))
 renderers = []
 waiting = compiled_by(lambda: renderers.append(SceneRenderer()))
 cell = encoder.cell
@@ -103,7 +103,8 @@ frame = compiled_by(lambda: encoder.encode(
     renderers[0].render(Scene.of(config), 60 * cell.width, 28 * cell.height)))
 assert ahead._minimizer_ready.wait(120)
 minimizer = compiled_by(lambda: minimized("\x1b[1m\x1b[31mA\x1b[0m\x1b[1mB\x1b[0m"))
-print(json.dumps({"waiting": waiting, "frame": frame, "minimizer": minimizer}))
+print(json.dumps({"ahead": ahead_, "waiting": waiting, "frame": frame,
+                  "minimizer": minimizer}))
 """
 
 
@@ -114,37 +115,35 @@ def test_on_a_cold_cache_the_app_loads_what_its_children_compiled(tmp_path):
                              capture_output=True, text=True, cwd=ROOT, env=environment,
                              timeout=300)
     assert process.returncode == 0, process.stderr
-    # Only the probe, the render thread's part; the children made the rest.
-    assert json.loads(process.stdout) == {"waiting": ["_farthest_along"], "frame": [],
-                                          "minimizer": []}
+    # Only the probe, this process's part; the children made the rest.
+    assert json.loads(process.stdout) == {"ahead": ["_farthest_along"], "waiting": [],
+                                          "frame": [], "minimizer": []}
 
 
-# Two children that take two seconds, one of them for later, and a probe that compiles (a
-# cold cache) or does not. Prints whether each child finished its job.
+# A child that takes two seconds, and a probe that compiles (a cold cache) or does not.
+# Prints whether the cache was taken for warm, and whether the child finished its job.
 PROBED = """
 import sys, time
 from pathlib import Path
 import numba
 from biceps.engine import coldstart
 
-done, later_done = Path(sys.argv[2]), Path(sys.argv[3])
+done = Path(sys.argv[2])
 coldstart.compile_aside(lambda: (time.sleep(2), done.write_text("done")))
-later = coldstart.compile_later(lambda: (time.sleep(2), later_done.write_text("done")))
-coldstart.try_here_first(numba.njit(lambda: 1) if sys.argv[1] == "cold" else lambda: None)
+probe = numba.njit(lambda: 1) if sys.argv[1] == "cold" else lambda: None
+warm = coldstart.stop_aside_if_cached(probe)
 coldstart.wait_for_aside()
-later.wait()
-print(done.exists(), later_done.exists())
+print(warm, done.exists())
 """
 
 
 @pytest.mark.skipif(coldstart._cores() < 2, reason="no second process on one core")
 @pytest.mark.parametrize("cache", ["cold", "warm"])
 def test_children_are_waited_for_on_a_cold_cache_and_stopped_on_a_warm_one(tmp_path, cache):
-    process = subprocess.run([sys.executable, "-c", PROBED, cache, str(tmp_path / "done"),
-                              str(tmp_path / "later")],
+    process = subprocess.run([sys.executable, "-c", PROBED, cache, str(tmp_path / "done")],
                              capture_output=True, text=True, cwd=ROOT, timeout=60)
     assert process.returncode == 0, process.stderr
-    assert process.stdout.split() == [str(cache == "cold")] * 2
+    assert process.stdout.split() == [str(cache == "warm"), str(cache == "cold")]
 
 
 LATER = """
