@@ -169,16 +169,30 @@ def compile_rasterizer_aside(shading: str) -> Aside | None:
     return compile_aside(lambda: Renderer().prepare(shading, vertex_stage=False))
 
 
+def prepare_framing() -> None:
+    """Compile, or load from the cache, the kernel that frames a scene
+    (``engine/scene.py``'s outline), on arrays of the kinds a frame passes it: the
+    smallest of a frame's kernels, a tenth of a second cold."""
+    import numpy as np
+
+    from biceps.engine.scene import outline
+
+    outline(np.zeros((1, 3)))
+
+
 def prepare_kernels(shading: str, ssaa: int = 1) -> None:
     """Compile, or load from the cache, the kernels of a frame in ``shading`` with ``ssaa``
     supersampling, the rasterizer's in a child process (see :func:`compile_aside`) while
-    this one does the vertex stage and the downsampling: with a warm cache, once the
-    vertex stage has come from there, so, most likely, has the rasterizer, and the child
-    is stopped."""
+    this one does the rest: with a warm cache, once the rest has come from there, so,
+    most likely, has the rasterizer, and the child is stopped."""
     from biceps.engine.render import Renderer
 
+    def the_rest() -> None:
+        Renderer().prepare(shading, ssaa, rasterizer=False)
+        prepare_framing()
+
     compile_rasterizer_aside(shading)
-    stop_aside_if_cached(lambda: Renderer().prepare(shading, ssaa, rasterizer=False))
+    stop_aside_if_cached(the_rest)
     wait_for_aside()
 
 

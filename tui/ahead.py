@@ -24,7 +24,7 @@ from textual.driver import Driver
 from biceps.engine import coldstart
 from biceps.engine.config import Config
 from biceps.engine.render import Renderer
-from biceps.engine.scene import outline, supersampling
+from biceps.engine.scene import supersampling
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.sgr import lean, minimized
 
@@ -37,7 +37,7 @@ def compile_ahead(config: Config, encoder: PictureEncoder) -> None:
     cache with the framing's kernel; if it is cold, start the children compiling the rest
     of the app's first frame of ``config`` through ``encoder``, and the minimizer. Call it
     before any other thread starts (see `coldstart.compile_aside`)."""
-    if coldstart.stop_aside_if_cached(lambda: outline(np.zeros((1, 3)))):
+    if coldstart.stop_aside_if_cached(coldstart.prepare_framing):
         return  # this process loads the kernels as it goes, in milliseconds
     # A frame of one cell: so small that it is supersampled, as the app's first most
     # likely is (engine/scene.py).

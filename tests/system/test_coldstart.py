@@ -74,6 +74,32 @@ def test_on_a_cold_cache_the_rasterizer_comes_from_the_second_process(tmp_path):
     np.testing.assert_array_equal(np.asarray(Image.open(out)), expected)
 
 
+# A snapshot's start on an empty cache: what its frame compiles after prepare_kernels.
+SNAPSHOT_FIRST_RUN = """
+import json, sys
+from numba.core import event
+from biceps.engine.coldstart import prepare_kernels
+from biceps.engine.config import load_config
+from biceps.engine.scene import Scene, SceneRenderer, supersampling
+
+scene = Scene.of(load_config(sys.argv[1]))
+prepare_kernels(scene.render.shading, supersampling(scene.render, 54))
+with event.install_recorder("numba:compile") as recorder:
+    SceneRenderer().render(scene, 96, 54)
+print(json.dumps(sorted({e.data["dispatcher"].py_func.__name__ for _, e in recorder.buffer})))
+"""
+
+
+@pytest.mark.skipif(coldstart._cores() < 2, reason="the second process needs a second core")
+def test_on_a_cold_cache_a_snapshot_frame_compiles_nothing_after_prepare_kernels(tmp_path):
+    environment = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    process = subprocess.run([sys.executable, "-c", SNAPSHOT_FIRST_RUN, str(DEFAULT_CONFIG)],
+                             capture_output=True, text=True, cwd=ROOT, env=environment,
+                             timeout=300)
+    assert process.returncode == 0, process.stderr
+    assert json.loads(process.stdout) == []
+
+
 # The app's start on an empty cache (biceps/cli.py, tui/ahead.py), without Textual: the
 # children compile, this process compiles the probe; the render thread waits for them; then
 # the first frame, and the output minimizer once ready, find every kernel made. Prints what
