@@ -668,8 +668,8 @@ def run_app(config: Config, colors: str = "auto", fps: float | None = None,
             compile_aside: bool = False, graphics: str | None = None,
             pixel_scale: float = 1.0) -> int:
     """Run the app on ``config``; ``colors`` is ``auto``, ``truecolor`` or ``256``; ``fps``
-    caps the frame rate. ``compile_aside``: compile a frame's kernels in a forked child
-    while Textual starts (see engine/coldstart.py), for a process of its own.
+    caps the frame rate. ``compile_aside``: compile a frame's kernels in forked children
+    while Textual starts (see tui/ahead.py), for a process of its own.
     ``graphics``: the command line's choice of how the picture reaches the terminal
     (default: the config's), real pixels ``pixel_scale`` of the terminal's each way.
 

@@ -92,12 +92,7 @@ print(json.dumps(sorted({e.data["dispatcher"].py_func.__name__ for _, e in recor
 
 @pytest.mark.skipif(coldstart._cores() < 2, reason="the second process needs a second core")
 def test_on_a_cold_cache_a_snapshot_frame_compiles_nothing_after_prepare_kernels(tmp_path):
-    environment = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
-    process = subprocess.run([sys.executable, "-c", SNAPSHOT_FIRST_RUN, str(DEFAULT_CONFIG)],
-                             capture_output=True, text=True, cwd=ROOT, env=environment,
-                             timeout=300)
-    assert process.returncode == 0, process.stderr
-    assert json.loads(process.stdout) == []
+    assert _printed_on_a_cold_cache(SNAPSHOT_FIRST_RUN, tmp_path) == []
 
 
 # The app's start on an empty cache (biceps/cli.py, tui/ahead.py), without Textual: the
@@ -136,14 +131,20 @@ print(json.dumps({"ahead": ahead_, "waiting": waiting, "frame": frame,
 
 @pytest.mark.skipif(coldstart._cores() < 2, reason="the children need a second core")
 def test_on_a_cold_cache_the_app_loads_what_its_children_compiled(tmp_path):
+    # Only the probe, this process's part; the children made the rest.
+    assert _printed_on_a_cold_cache(APP_FIRST_RUN, tmp_path) == {
+        "ahead": ["_farthest_along"], "waiting": [], "frame": [], "minimizer": []}
+
+
+def _printed_on_a_cold_cache(script: str, tmp_path: Path) -> object:
+    """What ``script`` prints (JSON), run on the default model in a fresh interpreter with
+    an empty numba cache."""
     environment = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
-    process = subprocess.run([sys.executable, "-c", APP_FIRST_RUN, str(DEFAULT_CONFIG)],
+    process = subprocess.run([sys.executable, "-c", script, str(DEFAULT_CONFIG)],
                              capture_output=True, text=True, cwd=ROOT, env=environment,
                              timeout=300)
     assert process.returncode == 0, process.stderr
-    # Only the probe, this process's part; the children made the rest.
-    assert json.loads(process.stdout) == {"ahead": ["_farthest_along"], "waiting": [],
-                                          "frame": [], "minimizer": []}
+    return json.loads(process.stdout)
 
 
 # A child that takes two seconds, and a probe that compiles (a cold cache) or does not.
