@@ -29,6 +29,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from biceps.engine.stations import distances_along, section_radii, shares
+
 RINGS_PER_SEGMENT = 4
 """Sections drawn per segment between two nodes, so the moves bend smoothly..."""
 MOST_SECTIONS = 1024
@@ -65,7 +67,7 @@ def section_offsets(start, end, radii, centres, sphere_radii,
     """
     start, end = np.asarray(start, dtype=np.float64), np.asarray(end, dtype=np.float64)
     count = (len(radii) - 1) * per_segment + 1
-    share = np.linspace(0.0, 1.0, count)
+    share = shares(count)
     axis = (end - start) / np.linalg.norm(end - start)
     return path_offsets(start + np.outer(share, end - start), np.tile(axis, (count, 1)),
                         radii, centres, sphere_radii)
@@ -93,20 +95,14 @@ def path_offsets(points, axes, radii, centres, sphere_radii, lean: float = 0.0,
     direction, and never snakes (a dip between the humeral head and the belly would bend
     it in and out again).
     """
-    along = _along(points)
+    along = distances_along(points)
     near = _from_bend(along, axes)
     leans = _bend_leans(near, len(points), lean)
     sides = _sides(points, axes)
     way = _leaning(sides, _turned(sides, axes), leans) if leans.any() else sides
-    radius = np.interp(np.linspace(0.0, 1.0, len(points)), np.linspace(0.0, 1.0, len(radii)),
-                       radii)
+    radius = section_radii(radii, len(points))
     shift = _least_shifts(points, radius, axes, way, centres, sphere_radii)
     return _smoothed(along, near, shift, np.abs(np.cos(leans)), one_bulge)[:, None] * way
-
-
-def _along(points: np.ndarray) -> np.ndarray:
-    """(m,) each point's distance along the path through ``points`` (m, 3) from the first."""
-    return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
 
 
 def _from_bend(along: np.ndarray, axes: np.ndarray) -> np.ndarray | None:
@@ -164,10 +160,10 @@ def lean_reaches(points, axes, radii, centres, sphere_radii) -> tuple[np.ndarray
     # the leans.
     nodes = np.linspace(0, len(points) - 1, min(len(radii), 64)).round().astype(int)
     points, axes = points[nodes], axes[nodes]
-    radii = np.interp(np.linspace(0.0, 1.0, len(nodes)), np.linspace(0.0, 1.0, len(radii)), radii)
+    radii = section_radii(radii, len(nodes))
     sides = _sides(points, axes)
     turned = _turned(sides, axes)
-    along = _along(points)
+    along = distances_along(points)
     near = _from_bend(along, axes)
     cuts = _cuts(points, radii, axes, centres, sphere_radii)
     leans = LEANS * (1.0 if points[:, 2].mean() >= 0.0 else -1.0)

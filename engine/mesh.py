@@ -19,6 +19,8 @@ from functools import lru_cache
 
 import numpy as np
 
+from biceps.engine.stations import distances_along, section_radii
+
 DEFAULT_SEGMENTS = 48
 """Vertices around the axis: a 48-gon keeps 99.7 % of its circle's area (k sin(2 pi/k) / 2 pi)."""
 
@@ -143,8 +145,8 @@ def bent_muscle_mesh(radii, points, axes, segments: int = DEFAULT_SEGMENTS) -> M
     points, axes = np.asarray(points, dtype=np.float64), np.asarray(axes, dtype=np.float64)
     _check_segments(segments)
     # The rings take the radii of equal steps along the profile, wherever they were moved.
-    r = np.interp(np.linspace(0.0, 1.0, len(points)), np.linspace(0.0, 1.0, len(radii)), radii)
-    along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+    r = section_radii(radii, len(points))
+    along = distances_along(points)
     slopes = np.gradient(r, along)
     spokes = _spokes_along(axes, segments)  # (m, segments, 3)
     vertices = points[:, None, :] + r[:, None, None] * spokes

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from biceps.engine import stations
 from biceps.engine.bones import bone_spheres
 from biceps.engine.clearance import (best_lean, lean_reaches, path_offsets, reach,
                                      sections_per_segment)
@@ -122,5 +123,4 @@ def laid_offsets(muscle: Muscle, points, axes, spheres, lean: float | None) -> n
 
 def section_radii(muscle: Muscle, count: int) -> np.ndarray:
     """(count,) the radii of ``count`` sections equally spaced along the muscle."""
-    return np.interp(np.linspace(0.0, 1.0, count), np.linspace(0.0, 1.0, muscle.node_count),
-                     muscle.radii)
+    return stations.section_radii(muscle.radii, count)

@@ -24,6 +24,7 @@ from typing import Literal
 import numpy as np
 
 from biceps.engine.skeleton import Attachment, forearm_frame, place
+from biceps.engine.stations import shares
 
 WrapSide = Literal["front", "back"]
 SIDES: dict[str, int] = {"front": 1, "back": -1}
@@ -68,7 +69,7 @@ class MusclePath:
         and the path's unit direction (count, 3) at each, at ``flexion`` degrees."""
         start, end = self.ends(flexion)
         wrapped = self._wrapped(start, end)
-        share = np.linspace(0.0, 1.0, count)
+        share = shares(count)
         if wrapped is None:
             direction = (end - start) / np.linalg.norm(end - start)
             return start + np.outer(share, end - start), np.tile(direction, (count, 1))
