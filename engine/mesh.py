@@ -59,13 +59,17 @@ class Mesh:
         meshes = list(meshes)
         if not meshes:
             return Mesh(np.empty((0, 3)), np.empty((0, 3)), np.empty((0, 3), np.int32))
-        # int32 offsets keep the sums int32: no int64 copy of every index to convert back
+        # int32 offsets keep the sums int32: no int64 copy of every index to convert back;
+        # each part's sums written straight into the whole (a copy of each part's indices
+        # joined afterwards cost the six's pose 0.05 ms more)
         offsets = np.cumsum([0] + [len(mesh.vertices) for mesh in meshes[:-1]], dtype=np.int32)
-        return Mesh(
-            np.concatenate([mesh.vertices for mesh in meshes]),
-            np.concatenate([mesh.normals for mesh in meshes]),
-            np.concatenate([mesh.triangles + offset for mesh, offset in zip(meshes, offsets)]),
-        )
+        triangles = np.empty((sum(len(mesh.triangles) for mesh in meshes), 3), np.int32)
+        at = 0
+        for mesh, offset in zip(meshes, offsets):
+            np.add(mesh.triangles, offset, out=triangles[at:at + len(mesh.triangles)])
+            at += len(mesh.triangles)
+        return Mesh(np.concatenate([mesh.vertices for mesh in meshes]),
+                    np.concatenate([mesh.normals for mesh in meshes]), triangles)
 
 
 def muscle_mesh(

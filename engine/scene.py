@@ -113,15 +113,17 @@ def scene_mesh(arm: Arm, render: RenderSettings,
     albedo[:] = _unit_rgb(render.bone_colour)[:, None]
     tendon_colour = _unit_rgb(render.tendon_colour)
     colours = (render.muscle_colour, *(companion.colour for companion in arm.companions))
+    flexion = arm.flexion  # worked out from the length at each read: 9 us
     for name, muscle, path, colour in zip(arm.names, arm.muscles, arm.paths, colours):
         if name in hidden:
             continue
         belly = (strain_colour(muscle.length / muscle.reference_length - 1.0)
                  if render.colour_by == "strain" else _unit_rgb(colour))
-        tendon = tendon_share(muscle, path, arm.flexion, parts[name])
+        tendon = tendon_share(muscle, path, flexion, parts[name])
+        not_tendon = 1.0 - tendon
         start, end = spans[name]
         for channel, out in enumerate(albedo[:, start:end]):
-            np.multiply(1.0 - tendon, belly[channel], out=out)
+            np.multiply(not_tendon, belly[channel], out=out)
             out += tendon * tendon_colour[channel]
     return Mesh.concatenate(list(parts.values())), albedo.T
 
