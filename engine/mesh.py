@@ -343,15 +343,15 @@ def _spokes(axis: np.ndarray, segments: int) -> np.ndarray:
 
 def _spokes_along(axes: np.ndarray, segments: int) -> np.ndarray:
     """(m, segments, 3) the `_spokes` about each of ``axes`` (m, 3). A path wrapped round
-    the elbow is straight before and after its arc, where its axes repeat: each is worked
-    out once, not once a ring (0.51 -> 0.25 ms a wrapped muscle of the six)."""
-    spokes = np.empty((len(axes), segments, 3))
-    for i, axis in enumerate(axes):
-        if i and axis.tobytes() == axes[i - 1].tobytes():
-            spokes[i] = spokes[i - 1]
-        else:
-            spokes[i] = _spokes(axis, segments)
-    return spokes
+    the elbow is straight before and after its arc, where its axes repeat: each run's are
+    worked out once, not once a ring (0.51 -> 0.25 ms a wrapped muscle of the six), and
+    copied to the rest of the run in one gather, not ring by ring (a further 0.02 to
+    0.04 ms)."""
+    bits = np.ascontiguousarray(axes).view(np.uint64)  # the same bits, as before: -0.0 is not 0.0
+    first = np.ones(len(axes), dtype=bool)
+    first[1:] = np.any(bits[1:] != bits[:-1], axis=1)
+    runs = np.stack([_spokes(axis, segments) for axis in axes[first]])
+    return np.take(runs, np.cumsum(first) - 1, axis=0)
 
 
 @lru_cache(maxsize=64)
