@@ -60,8 +60,8 @@ class Mesh:
         if not meshes:
             return Mesh(np.empty((0, 3)), np.empty((0, 3)), np.empty((0, 3), np.int32))
         # int32 offsets keep the sums int32: no int64 copy of every index to convert back;
-        # each part's sums written straight into the whole (a copy of each part's indices
-        # joined afterwards cost the six's pose 0.05 ms more)
+        # each part's sums written straight into the whole (adding into a copy of each
+        # part's and then joining those took the six's ten parts 176 us, this 145 us)
         offsets = np.cumsum([0] + [len(mesh.vertices) for mesh in meshes[:-1]], dtype=np.int32)
         triangles = np.empty((sum(len(mesh.triangles) for mesh in meshes), 3), np.int32)
         at = 0
@@ -345,8 +345,8 @@ def _spokes_along(axes: np.ndarray, segments: int) -> np.ndarray:
     """(m, segments, 3) the `_spokes` about each of ``axes`` (m, 3). A path wrapped round
     the elbow is straight before and after its arc, where its axes repeat: each run's are
     worked out once, not once a ring (0.51 -> 0.25 ms a wrapped muscle of the six), and
-    copied to the rest of the run in one gather, not ring by ring (a further 0.02 to
-    0.04 ms)."""
+    copied to the rest of the run in one gather, not ring by ring (41 rings of 5 runs
+    46 -> 42 us; 1,024 rings of 60, a subdivided muscle, 779 -> 398 us)."""
     bits = np.ascontiguousarray(axes).view(np.uint64)  # the same bits, as before: -0.0 is not 0.0
     first = np.ones(len(axes), dtype=bool)
     first[1:] = np.any(bits[1:] != bits[:-1], axis=1)
