@@ -53,7 +53,7 @@ def run_floor_app(segments: int, prerendered: bool) -> None:
         if not prerendered:
             return Strip(parts, width)
         text = "".join(f"{codes(part.style, 'truecolor')}{part.text}{RESET}" for part in parts)
-        return PrerenderedStrip(parts, width, text, "truecolor")
+        return PrerenderedStrip(lambda: parts, width, text, "truecolor")
 
     class Picture(Widget):
         DEFAULT_CSS = "Picture { width: 1fr; height: 1fr; }"

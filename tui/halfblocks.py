@@ -8,8 +8,9 @@ are merged into one segment, so a flat background costs one segment per line.
 
 Kernels pack each cell's two pixels into one number, find the rows that differ from the
 last frame and the runs of equal cells in them, and write each changed line's terminal text
-as Textual would write its segments (``tui/prerendered.py``); Python only turns runs into
-segments, with one cached :class:`~rich.style.Style` per cell colour. Textual composes the
+as Textual would write its segments (``tui/prerendered.py``). A line makes its segments,
+with one cached :class:`~rich.style.Style` per cell colour, only if Textual asks for
+them (to crop it under a dialog, say). Textual composes the
 lines with whatever is drawn over the picture and writes their text. For a 256-colour
 terminal the frames come already mapped onto the palette (``tui/palette.py``), each colour
 is written as its palette entry, and the lines' text is made from codes cached per cell
@@ -18,6 +19,7 @@ colour.
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Callable
 
 import numpy as np
@@ -209,7 +211,7 @@ class HalfBlocks:
         # A frame of another size changes every row, so no old strip is kept from it.
         old = self._strips if len(self._strips) == height else [None] * height
         strips = [
-            self._strip(self._cells[y], starts[y, : counts[y]], text) if row_changed else strip
+            self._strip(self._cells[y].copy(), text) if row_changed else strip
             for y, (row_changed, strip, text) in enumerate(zip(changed.tolist(), old, texts))
         ]
         self._strips = strips
@@ -244,21 +246,29 @@ class HalfBlocks:
         return [text[start:end].tobytes().decode() if row_changed else None
                 for row_changed, start, end in zip(changed.tolist(), [0, *ends], ends)]
 
-    def _strip(self, cells: np.ndarray, starts: np.ndarray, text: str | None) -> Strip:
-        """The line of ``cells`` whose runs start at ``starts``; ``text``: its terminal
+    def _strip(self, cells: np.ndarray, text: str | None) -> Strip:
+        """The line of ``cells`` ((w,) int64, kept by the line); ``text``: its terminal
         text, if made already."""
-        width = len(cells)
-        styles = self._styles
-        first = starts.tolist()
-        ends = first[1:] + [width]
-        cells_of_runs = cells[starts].tolist()
-        segments = [Segment(cell_text(cell, end - start), styles[cell])
-                    for cell, start, end in zip(cells_of_runs, first, ends)]
         if text is None:
             codes = self._codes
-            text = "".join([f"{codes[cell]}{segment.text}{RESET}"
-                            for cell, segment in zip(cells_of_runs, segments)])
-        return PrerenderedStrip(segments, width, text, self._color_system)
+            text = "".join([f"{codes[cell]}{cell_text(cell, length)}{RESET}"
+                            for cell, length in _runs(cells)])
+        return PrerenderedStrip(partial(self._segments, cells), len(cells), text,
+                                self._color_system)
+
+    def _segments(self, cells: np.ndarray) -> list[Segment]:
+        # Made when Textual asks (tui/prerendered.py), on the UI thread: the styles are
+        # shared with the render thread, each lookup and store one step under the GIL
+        # (two threads missing one colour at once make the same style twice).
+        styles = self._styles
+        return [Segment(cell_text(cell, length), styles[cell]) for cell, length in _runs(cells)]
+
+
+def _runs(cells: np.ndarray) -> list[tuple[int, int]]:
+    """The runs of equal cells in ``cells`` ((w,) int64): (cell, length) each."""
+    starts = np.flatnonzero(np.concatenate(([True], cells[1:] != cells[:-1])))
+    lengths = np.diff(starts, append=len(cells))
+    return list(zip(cells[starts].tolist(), lengths.tolist()))
 
 
 def _spans(changed: np.ndarray) -> list[tuple[int, int]]:

@@ -61,6 +61,40 @@ def test_a_framed_line_is_written_as_its_sides_around_it(system):
     assert framed.render(console) == _as_textual_writes(framed, console)
 
 
+def _has_segments(strip: Strip) -> bool:
+    try:
+        Strip._segments.__get__(strip)  # the slot itself: no segments are made for this
+    except AttributeError:
+        return False
+    return True
+
+
+def test_a_line_is_written_without_making_its_segments():
+    strips = HalfBlocks().encode(FRAME).strips
+    console = Console(color_system="truecolor", force_terminal=True)
+    left, right = Strip.blank(1), Strip.blank(1)
+    framed = [strip.framed(left, right, console) for strip in strips]
+    for line in framed + strips:
+        # What the compositor does with a line that nothing covers.
+        (whole,) = line.divide([line.cell_length, line.cell_length + 5])
+        assert whole is line and line.crop(0, line.cell_length) is line
+        line.render(console)
+    assert not any(_has_segments(line) for line in framed + strips)
+    assert list(framed[4]) == [*left, *strips[4], *right]  # made once asked for
+    assert _has_segments(framed[4]) and _has_segments(strips[4])
+    assert [piece.cell_length for piece in strips[5].divide([10, 40])] == [10, 30]
+
+
+async def test_the_viewport_s_lines_are_composed_without_their_segments(biceps):
+    async with biceps(size=(100, 30)) as session:
+        viewport = session.app.screen.query_one(Viewport)
+        await session.pilot.press("right")
+        await session.settle()
+        session.app.screen._compositor.render_update(full=True)  # as a repaint does
+        framed = [framed for _, _, framed in viewport._framed_lines.values()]
+        assert framed and not any(_has_segments(line) for line in framed)
+
+
 def _lines(viewport: Viewport, crop: Region) -> tuple[list[Strip], list[Strip]]:
     """The viewport's lines for ``crop``, and those Textual would style for it itself."""
     return viewport.render_lines(crop), Widget.render_lines(viewport, crop)
