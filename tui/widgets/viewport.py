@@ -152,7 +152,7 @@ class Viewport(Widget, can_focus=True):
         self._background = Style()
         self._captions = ("", "")  # on the border now
         self._frame_captions = ("", "")  # those of the frame on screen
-        self._captioning = False
+        self._captioning: int | None = None  # the border row of the caption being set
         self._progress_at = 0.0  # when the last frame came, or the wait for one began
         self._progress_timer: Timer | None = None
 
@@ -339,21 +339,25 @@ class Viewport(Widget, can_focus=True):
                     markup=False)
 
     def _caption(self, title: str, subtitle: str) -> None:
-        if (title, subtitle) == self._captions:
-            return
+        # Each caption is set only if it changed: setting one repaints its row, and a
+        # turn changes the title alone.
+        top, bottom = self.styles.gutter.top, self.styles.gutter.bottom
+        for row, caption, shown, attribute in (
+                (-top, title, self._captions[0], "border_title"),
+                (self.size.height + bottom - 1, subtitle, self._captions[1], "border_subtitle")):
+            if caption != shown:
+                self._captioning = row  # see refresh
+                try:
+                    setattr(self, attribute, caption)
+                finally:
+                    self._captioning = None
         self._captions = title, subtitle
-        self._captioning = True  # see refresh
-        try:
-            self.border_title, self.border_subtitle = title, subtitle
-        finally:
-            self._captioning = False
 
     def refresh(self, *regions: Region, **options) -> Viewport:
-        if self._captioning and not regions:
+        if self._captioning is not None and not regions:
             # Setting a border title repaints the whole widget, picture and all, though
-            # only the border's top and bottom rows show captions.
-            top, bottom = self.styles.gutter.top, self.styles.gutter.bottom
-            regions = (self._rows(-top, 1), self._rows(self.size.height + bottom - 1, 1))
+            # only its own row changes.
+            regions = (self._rows(self._captioning, 1),)
         return super().refresh(*regions, **options)
 
     def _rows(self, y: int, rows: int) -> Region:
