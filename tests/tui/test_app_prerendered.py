@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from rich.console import Console
+from textual._styles_cache import StylesCache
 from textual.geometry import Region
 from textual.strip import Strip
 from textual.widget import Widget
@@ -122,6 +123,29 @@ async def test_the_viewport_frames_its_lines_as_textual_would_style_them(biceps)
         viewport.blur()  # another border colour
         await session.pilot.pause()
         _assert_same(*_lines(viewport, Region(0, 0, width, height)), console)
+
+
+async def test_textual_styles_only_the_border_rows_that_changed(biceps, monkeypatch):
+    async with biceps(size=(100, 30)) as session:
+        viewport = session.app.screen.query_one(Viewport)
+        await session.pilot.press("right")
+        await session.settle()
+        whole = Region(0, 0, *viewport.outer_size)
+        viewport.render_lines(whole)
+        styled: list[Region] = []
+        render_widget = StylesCache.render_widget
+
+        def recording(cache, widget, crop):
+            styled.append(crop)
+            return render_widget(cache, widget, crop)
+
+        monkeypatch.setattr(StylesCache, "render_widget", recording)
+        viewport.render_lines(whole)
+        assert styled == []  # all as Textual has them already
+        viewport._caption("a new title", viewport.border_subtitle)
+        lines = viewport.render_lines(whole)
+        assert styled == [Region(0, 0, whole.width, 1)]  # the title's row alone
+        _assert_same(lines, Widget.render_lines(viewport, whole), session.app.console)
 
 
 async def test_a_viewport_with_effects_has_textual_style_its_lines(biceps):
