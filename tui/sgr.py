@@ -54,9 +54,9 @@ MAX_PARAMETERS = 64
 @helper
 def put_number(out, at, number):
     """Write ``number`` (>= 0) in decimal at ``out[at:]``; return where it ends."""
-    digits = 1
-    while number >= 10**digits:
-        digits += 1
+    digits, bound = 1, 10
+    while number >= bound:  # (colour values, mostly: three digits at most)
+        digits, bound = digits + 1, bound * 10
     for place in range(digits - 1, -1, -1):
         out[at + place] = 48 + number % 10
         number //= 10
@@ -97,7 +97,7 @@ def _put_sgr(out, at, sent, wanted, attributes, reset):
         out[at] = 48  # 0
         at += 1
     added = wanted[0] if reset else wanted[0] & ~sent[0]
-    for bit in range(len(attributes)):
+    for bit in range(len(attributes) if added else 0):
         if added & (1 << bit):
             if at > start + 2:
                 out[at] = 59  # ;
@@ -122,10 +122,13 @@ def _put_change(out, at, sent, wanted, attributes):
     end = at
     if (sent[0] & ~wanted[0]) == 0:  # no attribute to turn off: the change alone will do
         end = _put_sgr(out, at, sent, wanted, attributes, False)
-    reset_end = _put_sgr(out, end, sent, wanted, attributes, True)
-    if end == at or reset_end - end < end - at:
-        _copy(out, end, reset_end, out, at)  # the reset's way is shorter: keep it instead
-        end = at + reset_end - end
+    # With both colours set (a picture's every cell), a reset writes all that the change
+    # does, and more.
+    if end == at or wanted[1] == 0 or wanted[2] == 0:
+        reset_end = _put_sgr(out, end, sent, wanted, attributes, True)
+        if end == at or reset_end - end < end - at:
+            _copy(out, end, reset_end, out, at)  # the reset's way is shorter: keep it
+            end = at + reset_end - end
     for index in range(3):
         sent[index] = wanted[index]
     return end
