@@ -8,8 +8,9 @@ terminal shows, cell by cell, is the same.
 
 The kernel reads the output once, keeping two states (codes that are on, foreground,
 background): the one the output asks for and the one sent so far. SGR sequences only
-change the first; before anything is drawn (text, a newline, an escape sequence other than
-a cursor move) the difference is sent. A code it does not know (underline colour, colons)
+change the first; before anything is drawn (text, an escape sequence other than a cursor
+move or a new line, which Textual never writes where it would scroll) the difference is
+sent. A code it does not know (underline colour, colons)
 is sent as it is, and the rest of that output too, unchanged.
 
 Each write is taken on its own: Textual ends every write with the terminal in its default
@@ -25,7 +26,7 @@ from textual.strip import SGR_STYLES
 
 from biceps.engine.jit import helper, ngjit
 
-ESC, BEL = 0x1B, 0x07
+ESC, BEL, LF, CR = 0x1B, 0x07, 0x0A, 0x0D
 
 # The attributes Textual writes, one bit each, and the codes that turn them off again.
 ATTRIBUTES = np.array([int(code) for code in SGR_STYLES], np.int64)
@@ -228,7 +229,13 @@ def minimize_sgr(source, out, length, attributes, off_masks, states, parameters)
     size, room = len(source), len(out) - 256  # two ways to change state take less
     at, written, verbatim = 0, 0, False
     while at < size:
-        if source[at] != ESC:
+        if source[at] == LF or source[at] == CR:
+            # A new line draws nothing, as a cursor move does: Textual, full screen (the
+            # app is never inline), writes one between the rows of an update, never below
+            # the screen's last row, so it never scrolls (which would fill the new row
+            # with the background then in force).
+            end = at + 1
+        elif source[at] != ESC:
             end = _text_end(source, at)
             written = _put_change(out, written, sent, wanted, attributes)
         else:
@@ -266,9 +273,10 @@ def _copy(source, start, end, target, at):
 
 @helper
 def _text_end(source, at):
-    """Where the text starting at ``source[at]`` ends: at the next ESC, or the end."""
+    """Where the text starting at ``source[at]`` ends: at the next ESC or new line, or the
+    end."""
     for index in range(at, len(source)):
-        if source[index] == ESC:
+        if source[index] == ESC or source[index] == LF or source[index] == CR:
             return index
     return len(source)
 

@@ -41,6 +41,11 @@ def test_cursor_moves_wait_for_the_state_and_other_sequences_do_not():
     assert minimized(written) == f"{RED_ON_BLUE}a\x1b[3;1Hb\x1b[0m\x1b[?25l"
 
 
+def test_a_new_line_between_rows_waits_for_the_state_like_a_cursor_move():
+    written = f"{RED_ON_BLUE}a\x1b[0m\n\x1b[3;1H{RED_ON_BLUE}b\x1b[0m\r\n"
+    assert minimized(written) == f"{RED_ON_BLUE}a\n\x1b[3;1Hb\r\n\x1b[0m"
+
+
 def test_codes_it_does_not_know_pass_through_with_the_rest():
     underline_colour = "\x1b[4;58;2;1;2;3m"
     written = f"{RED_ON_BLUE}a\x1b[0m{underline_colour}b\x1b[0m{RED_ON_BLUE}c\x1b[0m"
@@ -72,7 +77,7 @@ lines = st.lists(st.lists(segments, min_size=1, max_size=12), min_size=1, max_si
 @given(lines=lines, system=st.sampled_from(["truecolor", "256", "standard"]))
 def test_the_screen_is_the_same_for_any_styles(lines, system):
     console = Console(color_system=system, force_terminal=True)
-    written = "".join(
+    written = "\n".join(  # as Textual writes an update's rows
         f"\x1b[{y + 1};1H" + Strip(line).render(console) for y, line in enumerate(lines)
     )
     screen, lean = Screen(60, 6).feed(written), Screen(60, 6).feed(minimized(written))
