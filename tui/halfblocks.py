@@ -9,12 +9,11 @@ are merged into one segment, so a flat background costs one segment per line.
 Kernels pack each cell's two pixels into one number, find the rows that differ from the
 last frame and the runs of equal cells in them, and write each changed line's terminal text
 as Textual would write its segments (``tui/prerendered.py``). A line makes its segments,
-with one cached :class:`~rich.style.Style` per cell colour, only if Textual asks for
-them (to crop it under a dialog, say). Textual composes the
-lines with whatever is drawn over the picture and writes their text. For a 256-colour
-terminal the frames come already mapped onto the palette (``tui/palette.py``), each colour
-is written as its palette entry, and the lines' text is made from codes cached per cell
-colour.
+with one cached :class:`~rich.style.Style` per cell colour, only if Textual asks for them
+(to crop it under a dialog, say). Textual composes the lines with whatever is drawn over
+the picture and writes their text. For a 256-colour terminal the frames come already
+mapped onto the palette (``tui/palette.py``), each colour is written as its palette entry,
+and the lines' text is made from codes cached per cell colour.
 """
 
 from __future__ import annotations

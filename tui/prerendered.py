@@ -13,7 +13,7 @@ dialog), are written by Textual as usual.
 Nor are a picture's segments made unless Textual asks for them: to write a line that it
 neither crops nor divides, it needs the line's width and text alone, so a frame's new
 lines, some fifty of a dozen segments each, are made without a :class:`Segment` or a
-:class:`Strip`'s caches (a millisecond a frame on the render thread at 200x60). Cropped
+:class:`Strip`'s caches (1.3 ms a frame on the render thread at 200x60). Cropped
 under a dialog, exported as SVG or compared, a line makes its segments then, once.
 """
 

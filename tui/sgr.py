@@ -10,8 +10,8 @@ The kernel reads the output once, keeping two states (codes that are on, foregro
 background): the one the output asks for and the one sent so far. SGR sequences only
 change the first; before anything is drawn (text, an escape sequence other than a cursor
 move or a new line, which Textual never writes where it would scroll) the difference is
-sent. A code it does not know (underline colour, colons)
-is sent as it is, and the rest of that output too, unchanged.
+sent. A code it does not know (underline colour, colons) is sent as it is, and the rest of
+that output too, unchanged.
 
 Each write is taken on its own: Textual ends every write with the terminal in its default
 state, so that is where the state starts, and each write ends with the state its own codes
