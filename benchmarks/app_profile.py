@@ -62,9 +62,10 @@ def listen(output: Path) -> None:
     signal.signal(signal.SIGUSR2, stop)
 
 
-def run_child(config: Path, output: Path) -> None:
-    """The app, as ``biceps app`` starts it, with :func:`listen`."""
-    listen(output)
+def run_child(config: Path, output: Path, signals=listen) -> None:
+    """The app, as ``biceps app`` starts it, with ``signals(output)`` (:func:`listen`)
+    set up first."""
+    signals(output)
     sys.argv = ["biceps", "app", str(config)]
     from biceps.cli import run
 
@@ -156,44 +157,62 @@ def report(name: str, runs: list[tuple[dict[str, float], float, float]]) -> floa
     return cpu
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def flood_arguments(description: str) -> argparse.ArgumentParser:
+    """The options of a benchmark of the app under a held key (this one's, and
+    ``app_stages.py``'s): the model, the size, the runs, another checkout to measure in
+    turn; and the child's."""
+    parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--config", type=Path, default=CONFIG)
     parser.add_argument("--size", default="200x60")
     parser.add_argument("--seconds", type=float, default=4.0)
     parser.add_argument("--runs", type=int, default=3)
-    parser.add_argument("--top", type=int, default=30)
-    parser.add_argument("--no-functions", action="store_true", help="threads only")
     parser.add_argument("--baseline", type=Path, metavar="PYTHON",
                         help="the Python of another checkout's environment (main's, say): "
                              "its app is measured too, run for run in turn with this one")
     parser.add_argument("--child", type=Path, help=argparse.SUPPRESS)
     parser.add_argument("--output", type=Path, help=argparse.SUPPRESS)
-    arguments = parser.parse_args()
-    if arguments.child:
-        run_child(arguments.child, arguments.output)
-        return
+    return parser
+
+
+def in_turn(arguments: argparse.Namespace, script: Path, measure, output: Path):
+    """``measure(argv, size, seconds, output)`` of the app started by ``script`` with
+    ``--child``, by this checkout's Python and the baseline's, ``--runs`` times in turn so
+    that both see the same load: each one's results by name ("baseline", "this"), the
+    load averages seen, and the argv of each."""
     size = tuple(map(int, arguments.size.split("x")))
     pythons = {"this": Path(sys.executable)}
     if arguments.baseline:
         pythons = {"baseline": arguments.baseline, **pythons}
+    argvs = {name: [str(python), str(script.resolve()), "--child",
+                    str(arguments.config.resolve()), "--output", str(output)]
+             for name, python in pythons.items()}
+    runs: dict[str, list] = {name: [] for name in pythons}
+    loads = []
+    for _ in range(arguments.runs):
+        for name, argv in argvs.items():
+            runs[name].append(measure(argv, size, arguments.seconds, output))
+            loads.append(os.getloadavg()[0])
+    print(f"model: {arguments.config}, {size[0]}x{size[1]}, key at {FLOOD:g}/s, "
+          f"load {min(loads):.2f} to {max(loads):.2f}")
+    return runs, argvs
+
+
+def main() -> None:
+    parser = flood_arguments(__doc__.split("\n\n")[0])
+    parser.add_argument("--top", type=int, default=30)
+    parser.add_argument("--no-functions", action="store_true", help="threads only")
+    arguments = parser.parse_args()
+    if arguments.child:
+        run_child(arguments.child, arguments.output)
+        return
     with tempfile.TemporaryDirectory() as folder:
         output = Path(folder) / "profile.pstat"
-        argvs = {name: [str(python), str(Path(__file__).resolve()), "--child",
-                        str(arguments.config.resolve()), "--output", str(output)]
-                 for name, python in pythons.items()}
-        runs: dict[str, list] = {name: [] for name in pythons}
-        loads = []
-        for _ in range(arguments.runs):
-            for name, argv in argvs.items():  # in turn, so that both see the same load
-                runs[name].append(measure_threads(argv, size, arguments.seconds, output))
-                loads.append(os.getloadavg()[0])
-        print(f"model: {arguments.config}, {size[0]}x{size[1]}, key at {FLOOD:g}/s, "
-              f"load {min(loads):.2f} to {max(loads):.2f}")
+        runs, argvs = in_turn(arguments, Path(__file__), measure_threads, output)
         cpu = {name: report(name, name_runs) for name, name_runs in runs.items()}
         if arguments.baseline:
             print(f"CPU per frame, this / baseline: {cpu['this'] / cpu['baseline']:.2f}")
         if not arguments.no_functions:
+            size = tuple(map(int, arguments.size.split("x")))
             profile_functions(argvs["this"], size, arguments.seconds, output, arguments.top)
 
 

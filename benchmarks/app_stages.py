@@ -20,20 +20,19 @@ stops them and writes what they counted for the parent to read.
 
 from __future__ import annotations
 
-import argparse
 import functools
 import importlib
 import json
 import os
 import signal
 import statistics
-import sys
 import tempfile
 import threading
 import time
 from pathlib import Path
 
-from tui_pty import CONFIG, FLOOD, hold, started
+from app_profile import flood_arguments, in_turn, run_child
+from tui_pty import FLOOD, hold, started
 
 # What each stage is: a function of the UI thread, by module and qualified name. Indented
 # stages run inside the one above them.
@@ -97,15 +96,6 @@ def time_stages(output: Path) -> None:
     signal.signal(signal.SIGUSR2, stop)
 
 
-def run_child(config: Path, output: Path) -> None:
-    """The app, as ``biceps app`` starts it, with :func:`time_stages`."""
-    time_stages(output)
-    sys.argv = ["biceps", "app", str(config)]
-    from biceps.cli import run
-
-    run()
-
-
 def measure(argv: list[str], size: tuple[int, int], seconds: float,
             output: Path) -> tuple[dict[str, float], dict[str, float], float]:
     """ms per frame and calls per frame of each stage, and the frame rate, over a flood."""
@@ -128,39 +118,17 @@ def measure(argv: list[str], size: tuple[int, int], seconds: float,
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--config", type=Path, default=CONFIG)
-    parser.add_argument("--size", default="200x60")
-    parser.add_argument("--seconds", type=float, default=4.0)
-    parser.add_argument("--runs", type=int, default=3)
-    parser.add_argument("--baseline", type=Path, metavar="PYTHON",
-                        help="the Python of another checkout's environment (main's, say): "
-                             "its app is measured too, run for run in turn with this one")
-    parser.add_argument("--child", type=Path, help=argparse.SUPPRESS)
-    parser.add_argument("--output", type=Path, help=argparse.SUPPRESS)
-    arguments = parser.parse_args()
+    arguments = flood_arguments(__doc__.split("\n\n")[0]).parse_args()
     if arguments.child:
-        run_child(arguments.child, arguments.output)
+        run_child(arguments.child, arguments.output, time_stages)
         return
-    size = tuple(map(int, arguments.size.split("x")))
-    pythons = {"this": Path(sys.executable)}
-    if arguments.baseline:
-        pythons = {"baseline": arguments.baseline, **pythons}
-    runs: dict[str, list] = {name: [] for name in pythons}
-    loads = []
     with tempfile.TemporaryDirectory() as folder:
-        output = Path(folder) / "stages.json"
-        for _ in range(arguments.runs):
-            for name, python in pythons.items():  # in turn, so that both see the same load
-                argv = [str(python), str(Path(__file__).resolve()), "--child",
-                        str(arguments.config.resolve()), "--output", str(output)]
-                runs[name].append(measure(argv, size, arguments.seconds, output))
-                loads.append(os.getloadavg()[0])
-    print(f"model: {arguments.config}, {size[0]}x{size[1]}, key at {FLOOD:g}/s, "
-          f"load {min(loads):.2f} to {max(loads):.2f}; UI thread CPU, ms per frame "
-          f"(calls per frame), medians of {arguments.runs}")
+        runs, _ = in_turn(arguments, Path(__file__), measure, Path(folder) / "stages.json")
+    pythons = list(runs)
+    print(f"UI thread CPU, ms per frame (calls per frame), medians of {arguments.runs}")
     print(f"{'':28}" + "".join(f"{name:>18}" for name in pythons))
-    fps = {name: statistics.median(run[2] for run in name_runs) for name, name_runs in runs.items()}
+    fps = {name: statistics.median(run[2] for run in name_runs)
+           for name, name_runs in runs.items()}
     print(f"{'frames per second':28}" + "".join(f"{fps[name]:18.1f}" for name in pythons))
     for stage in [*STAGES, TOTAL]:
         cells = []
