@@ -83,16 +83,6 @@ from biceps.tui.widgets.viewport import Viewport
 DRAG_TURN = 180.0  # degrees per picture height
 DRAG_MOVE = 70.0  # cm per picture height
 
-OLDEST_COLLECTED_AFTER = 100
-"""Collections of the middle generation before one of the oldest (Python's third
-threshold, 10 by default). The half-block encoder keeps a style per cell colour, tens of
-thousands of objects that Python's oldest generation holds; with a key held on the six
-muscles (configs/elbow.toml, 200x60) the default collected it 3 times a second, 12 to 30
-ms each, and each time a frame or two missed Textual's update: 56.8 frames a second
-against 60.0 with this threshold (benchmarks/tui_pty.py --quick, medians of four rounds).
-The price: old cyclic garbage waits longer to be freed, the app's memory settling at 242
-MB instead of 216 over half a minute of that key held (30 gave 226 MB and 58.5 fps)."""
-
 TURN = Binding.Group("Turn", compact=True)
 
 
@@ -231,7 +221,6 @@ class BicepsApp(App[None]):
         # (gc.freeze), so that those collections walk only what came after.
         gc.collect()
         gc.freeze()
-        gc.set_threshold(*gc.get_threshold()[:2], OLDEST_COLLECTED_AFTER)
         if self._notice:
             self.notify(self._notice, timeout=12, markup=False)
         if self._rescue is not None:

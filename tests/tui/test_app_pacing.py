@@ -1,9 +1,7 @@
 """Flow control: the next frame waits for the terminal to answer, or for the cap; it is
-drawn meanwhile, and nothing the app does of itself holds it back for long."""
+drawn meanwhile."""
 
 from __future__ import annotations
-
-import gc
 
 import pytest
 from click.testing import CliRunner
@@ -13,7 +11,7 @@ import biceps.tui.pacing
 import biceps.tui.widgets.viewport
 from biceps.cli import main
 from biceps.engine.scene import SceneRenderer
-from biceps.tui.app import OLDEST_COLLECTED_AFTER, BicepsApp
+from biceps.tui.app import BicepsApp
 from biceps.tui.changes import TURN_STEP
 from biceps.tui.pacing import Pacer, cursor_question
 from biceps.tui.widgets.viewport import Viewport
@@ -325,14 +323,3 @@ def test_the_command_line_passes_the_cap_to_the_app(monkeypatch):
     assert runs == [{"colors": "auto", "fps": 30, "compile_aside": False, "graphics": None,
                      "pixel_scale": 1.0}]
     assert CliRunner().invoke(main, ["app", "--fps", "0"]).exit_code == 2
-
-
-async def test_once_up_the_app_seldom_collects_the_oldest_generation(config):
-    # Each such collection walks all the encoder's styles, long enough to miss a frame.
-    before = gc.get_threshold()
-    try:
-        async with BicepsApp(config).run_test(size=(100, 30)) as pilot:
-            await pilot.pause()
-            assert gc.get_threshold() == (*before[:2], OLDEST_COLLECTED_AFTER)
-    finally:
-        gc.set_threshold(*before)
