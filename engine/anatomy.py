@@ -15,9 +15,9 @@ import numpy as np
 from biceps.engine.bones import bone_meshes, bone_spheres
 from biceps.engine.mesh import Mesh, bent_muscle_mesh, muscle_mesh
 from biceps.engine.muscle import Muscle
-from biceps.engine.packing import (arm_leans, centreline, laid_offsets, laying_order,
-                                   section_radii)
+from biceps.engine.packing import arm_leans, centreline, laid_offsets, laying_order
 from biceps.engine.path import MusclePath
+from biceps.engine.stations import section_radii
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
@@ -69,7 +69,7 @@ def muscle_part(muscle: Muscle, path: MusclePath, flexion: float,
     else:
         mesh = muscle_mesh(muscle.radii, muscle.length, points[0], points[-1], segments,
                            offsets=offsets)
-    return mesh, (points + offsets, section_radii(muscle, len(points)))
+    return mesh, (points + offsets, section_radii(muscle.radii, len(points)))
 
 
 def tendon_share(muscle: Muscle, path: MusclePath, flexion: float, mesh: Mesh) -> np.ndarray:

@@ -16,12 +16,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from biceps.engine import stations
 from biceps.engine.bones import bone_spheres
 from biceps.engine.clearance import (best_lean, lean_reaches, path_offsets, reach,
                                      sections_per_segment)
 from biceps.engine.muscle import Muscle
 from biceps.engine.path import MusclePath
+from biceps.engine.stations import section_radii
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
@@ -110,7 +110,7 @@ def _laid_sections(muscle: Muscle, path: MusclePath, flexion: float,
     ``flexion`` clear of ``spheres``, leaning by ``lean`` (see `laid_offsets`)."""
     points, axes = centreline(muscle, path, flexion)
     offsets = laid_offsets(muscle, points, axes, spheres, lean)
-    return points + offsets, section_radii(muscle, len(points))
+    return points + offsets, section_radii(muscle.radii, len(points))
 
 
 def laid_offsets(muscle: Muscle, points, axes, spheres, lean: float | None) -> np.ndarray:
@@ -119,8 +119,3 @@ def laid_offsets(muscle: Muscle, points, axes, spheres, lean: float | None) -> n
     ``lean`` and bowed out once if it lies over other muscles, straight out if None."""
     return path_offsets(points, axes, muscle.radii, *spheres, lean=lean or 0.0,
                         one_bulge=lean is not None)
-
-
-def section_radii(muscle: Muscle, count: int) -> np.ndarray:
-    """(count,) the radii of ``count`` sections equally spaced along the muscle."""
-    return stations.section_radii(muscle.radii, count)
