@@ -265,8 +265,8 @@ def info(config: Path, length: float | None, flexion: float | None, as_json: boo
     others = facts["muscles"][1:]
     if others:
         width = max(len(each["name"]) for each in facts["muscles"])
-        click.echo(f"  muscles        length, volume (relative error), largest radius; the first "
-                   f"drives the elbow")
+        click.echo("  muscles        length, volume (relative error), largest radius; the first "
+                   "drives the elbow")
         for each in facts["muscles"]:
             click.echo(f"    {each['name']:<{width}}  {each['length_cm']:7.3f} cm "
                        f"{each['volume_cm3']:9.4f} cm^3 ({each['volume_relative_error']:.1e}) "
