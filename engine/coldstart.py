@@ -169,15 +169,27 @@ def compile_rasterizer_aside(shading: str) -> Aside | None:
     return compile_aside(lambda: Renderer().prepare(shading, vertex_stage=False))
 
 
-def prepare_framing() -> None:
-    """Compile, or load from the cache, the kernel that frames a scene
+def prepare_outline() -> None:
+    """Compile, or load from the cache, the kernel that outlines a mesh for framing
     (``engine/scene.py``'s outline), on arrays of the kinds a frame passes it: the
-    smallest of a frame's kernels, a tenth of a second cold."""
+    smallest of a frame's kernels, a tenth of a second cold (the app's probe of the cache,
+    ``tui/ahead.py``)."""
     import numpy as np
 
     from biceps.engine.scene import outline
 
     outline(np.zeros((1, 3)))
+
+
+def prepare_framing() -> None:
+    """:func:`prepare_outline`, and the kernel that aims the camera at the outline
+    (``engine/transforms.py``'s fit_points)."""
+    import numpy as np
+
+    from biceps.engine.transforms import fit_points
+
+    prepare_outline()
+    fit_points(np.zeros((1, 3)), 1.0)
 
 
 def prepare_kernels(shading: str, ssaa: int = 1) -> None:

@@ -47,6 +47,10 @@ triangle, which numba then inlines into their caller (LLVM does not inline acros
 functions: the call, with every array passed as a dozen scalars, cost as much as a short
 row of pixels). Inlining lengthens the first compilation, so it is kept to those."""
 
+exact = numba.njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
+"""``@exact``: ``@ngjit`` without fast-math, for a kernel that must give what the numpy it
+replaces gives, to the last bit (no fused multiply-add, no ``x * (1 / y)`` for ``x / y``)."""
+
 helper = register_jitable(fastmath=FASTMATH, error_model="numpy")
 """``@helper``: a small function called by kernels and compiled into them, as ``@ngjit`` would
 compile it, but with no dispatcher of its own: no Python entry point to generate, and no

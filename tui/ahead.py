@@ -4,10 +4,10 @@ On a first run (an empty numba cache) the first picture waits for numba to compi
 frame runs, and Textual's first screen for the output minimizer (``tui/sgr.py``). Each
 compiles in a forked child of its own (``engine/coldstart.py``): the rasterizer, much the
 longest, in one, which the command line starts as soon as it has read the config
-(``biceps/cli.py``); the vertex stage, the downsampling and the encoder in another. This
-process first compiles the framing's small kernel, which also tells a warm cache from a
-cold one: with a warm cache no other child starts, and the rasterizer's is stopped. The
-render thread waits for the children and loads what they compiled.
+(``biceps/cli.py``); the framing, the vertex stage, the downsampling and the encoder in
+another. This process first compiles the outline's small kernel, which also tells a warm
+cache from a cold one: with a warm cache no other child starts, and the rasterizer's is
+stopped. The render thread waits for the children and loads what they compiled.
 
 The minimizer only saves bytes: its child runs at the lowest priority, so that it takes no
 share of a core from the frame's, and until it is done the app writes Textual's output as
@@ -34,10 +34,10 @@ _minimizer_ready.set()  # unless a child is compiling it
 
 def compile_ahead(config: Config, encoder: PictureEncoder) -> None:
     """Once the rasterizer's child is on its way (see the module's docstring), probe the
-    cache with the framing's kernel; if it is cold, start the children compiling the rest
+    cache with the outline's kernel; if it is cold, start the children compiling the rest
     of the app's first frame of ``config`` through ``encoder``, and the minimizer. Call it
     before any other thread starts (see `coldstart.compile_aside`)."""
-    if coldstart.stop_aside_if_cached(coldstart.prepare_framing):
+    if coldstart.stop_aside_if_cached(coldstart.prepare_outline):
         return  # this process loads the kernels as it goes, in milliseconds
     # A frame of one cell: so small that it is supersampled, as the app's first most
     # likely is (engine/scene.py).
@@ -71,8 +71,9 @@ def lean_once_ready(driver_class: type[Driver]) -> type[Driver]:
 def _prepare_around_the_rasterizer(shading: str, ssaa: int,
                                    encoder: PictureEncoder) -> None:
     """What a frame runs before and after the rasterizer, on buffers of the kinds the
-    render thread passes: the vertex stage, the downsampling and the encoder, given a
-    read-only frame as the renderer returns."""
+    render thread passes: the framing, the vertex stage, the downsampling and the encoder,
+    given a read-only frame as the renderer returns."""
+    coldstart.prepare_framing()
     Renderer().prepare(shading, ssaa, rasterizer=False)
     frame = np.zeros((encoder.cell.height, encoder.cell.width, 3), np.uint8)
     frame.flags.writeable = False
