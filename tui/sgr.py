@@ -283,8 +283,8 @@ def _text_end(source, at):
 
 def minimized(text: str) -> str:
     """``text`` with only the colour codes that change anything."""
-    if "\x1b[" not in text:
-        return text
+    if "\x1b[" not in text or "m" not in text:  # (an SGR code ends in m)
+        return text  # a cursor question, say: not worth the kernel's call
     source = np.frombuffer(text.encode("utf-8", "surrogatepass"), np.uint8)
     out = np.empty(len(source) + len(source) // 2 + 512, np.uint8)
     length = np.zeros(1, np.int64)
