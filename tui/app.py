@@ -61,7 +61,7 @@ from biceps.tui.changes import (
 from biceps.tui.commands import KeyCommands
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.history import History, Step
-from biceps.tui.pacing import Pacer, cursor_question
+from biceps.tui.pacing import LoopTimer, Pacer, cursor_question
 from biceps.tui.rescue import Rescue, rescue_question
 from biceps.tui.parse import parse_path
 from biceps.tui.pixels import encoder_for
@@ -155,7 +155,7 @@ class BicepsApp(App[None]):
         terminal could show, see tui/detect.py). ``rescue``: start on the model an app left
         when it ended on an error, and offer to save it."""
         super().__init__()
-        self.pacer = Pacer(self._ask_cursor_position, self.set_timer, fps)
+        self.pacer = Pacer(self._ask_cursor_position, LoopTimer, fps)
         self._encoder = encoder
         self._notice = notice
         self._history = History()

@@ -16,12 +16,13 @@ answer to a later one.
 Nothing waits for ever. A terminal that has answered before is waited for up to three
 seconds, as a big frame over a slow link may take a while; one that has not (or has just
 missed an answer) for a second. After that the terminal is taken not to answer, and frames
-are paced by the cap alone (and Textual's own limit of 60 a second), until an answer to a
+are paced by the cap alone (the app's is Textual's limit, 60 a second), until an answer to a
 question given up on shows that it does, only slowly.
 """
 
 from __future__ import annotations
 
+import asyncio
 from time import monotonic
 from typing import Callable, Protocol
 
@@ -36,6 +37,18 @@ class Timer(Protocol):
 
 Release = Callable[[], None]
 SetTimer = Callable[[float, Release], Timer]
+
+
+class LoopTimer:
+    """``callback`` in ``delay`` seconds, on the running asyncio loop: Textual's
+    ``set_timer`` without the task it runs for each timer (the pacer sets one or two a
+    frame). For callbacks that need nothing of Textual's."""
+
+    def __init__(self, delay: float, callback: Release) -> None:
+        self._handle = asyncio.get_running_loop().call_later(delay, callback)
+
+    def stop(self) -> None:
+        self._handle.cancel()
 
 
 def cursor_question(column: int) -> str:

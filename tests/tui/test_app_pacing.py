@@ -3,6 +3,8 @@ drawn meanwhile."""
 
 from __future__ import annotations
 
+import asyncio
+
 import pytest
 from click.testing import CliRunner
 from textual import events
@@ -13,7 +15,7 @@ from biceps.cli import main
 from biceps.engine.scene import SceneRenderer
 from biceps.tui.app import BicepsApp
 from biceps.tui.changes import TURN_STEP
-from biceps.tui.pacing import Pacer, cursor_question
+from biceps.tui.pacing import LoopTimer, Pacer, cursor_question
 from biceps.tui.widgets.viewport import Viewport
 from waiting import until
 
@@ -58,6 +60,14 @@ def _pacer(timers: Timers, answers: bool = True, fps: float | None = None):
 
     pacer = Pacer(ask, timers.set_timer, fps, clock=lambda: timers.now)
     return pacer, asked
+
+
+async def test_a_loop_timer_calls_back_when_its_time_is_up_unless_stopped():
+    called = []
+    LoopTimer(0.01, lambda: called.append("kept"))
+    LoopTimer(0.01, lambda: called.append("stopped")).stop()
+    await asyncio.sleep(0.05)
+    assert called == ["kept"]
 
 
 def test_the_question_moves_the_cursor_to_its_column_and_back():
