@@ -43,8 +43,11 @@ STAGES = {
     "    Textual's styled lines": ("textual.widget", "Widget.render_lines"),
     "  write it": ("textual.app", "App._display"),
     "    the update's text": ("textual._compositor", "ChopsUpdate.render_segments"),
-    "    the SGR minimiser": ("biceps.tui.sgr", "minimized"),
     "a frame received": ("biceps.tui.widgets.viewport", "Viewport.on_viewport_frame_rendered"),
+    "  written by the viewport": ("biceps.tui.widgets.viewport", "Viewport._wrote"),
+    "    its lines framed": ("biceps.tui.widgets.viewport", "Viewport._framed"),
+    "    its border rows": ("biceps.tui.widgets.viewport", "Viewport._styled"),
+    "the SGR minimiser, all writes": ("biceps.tui.sgr", "minimized"),
     "a turn": ("biceps.tui.app", "BicepsApp.action_turn"),
 }
 TOTAL = "UI thread in all"

@@ -88,6 +88,21 @@ def _read_until_picture(master: int, output: bytearray, deadline: float) -> None
     pytest.fail(f"no picture before the time limit:\n{output[-2000:]!r}")
 
 
+def shown_after(command: list[str], *, cwd: Path, keys: bytes, expected: bytes,
+                size: tuple[int, int] = (100, 30), timeout: float = 120.0) -> bytes:
+    """Start ``command`` in a terminal of ``size``, type ``keys`` once its first picture is
+    out, and return all it wrote until ``expected`` has been written since (and the output
+    has paused); the command is then killed."""
+    with _terminal(command, cwd, size, {}) as (_, master):
+        output = bytearray()
+        deadline = time.monotonic() + timeout
+        _read_until_picture(master, output, deadline)
+        since = len(output)
+        os.write(master, keys)
+        _read_until(master, output, deadline, lambda: expected in output[since:])
+        return bytes(output)
+
+
 def converse(command: list[str], *, cwd: Path, script: list[tuple[bytes, bytes]],
              size: tuple[int, int] = (100, 30), timeout: float = 120.0) -> Run:
     """Start ``command`` in a terminal of ``size``; for each ``(expected, keys)`` of

@@ -149,13 +149,17 @@ class BicepsApp(App[None]):
     def __init__(self, config: Config, fps: float | None = None,
                  encoder: PictureEncoder | None = None, notice: str | None = None,
                  rescue: Rescue | None = None) -> None:
-        """``fps``: the most frames a second the picture is redrawn at (None: no cap but
-        the terminal's pace and Textual's own limit); ``encoder``: how the picture reaches
-        the terminal (default: half-blocks); ``notice``: said once the app is up (what the
-        terminal could show, see tui/detect.py). ``rescue``: start on the model an app left
-        when it ended on an error, and offer to save it."""
+        """``fps``: the most frames a second the picture is redrawn at, up to Textual's
+        limit (``TEXTUAL_FPS``, 60 unless set), the cap if None; ``encoder``: how the
+        picture reaches the terminal (default: half-blocks); ``notice``: said once the app
+        is up (what the terminal could show, see tui/detect.py). ``rescue``: start on the
+        model an app left when it ended on an error, and offer to save it."""
         super().__init__()
-        self.pacer = Pacer(self._ask_cursor_position, LoopTimer, fps)
+        # Textual paints no more often than its limit, but the viewport writes most frames
+        # itself (tui/widgets/viewport.py): the pacer keeps them to the limit too.
+        limit = textual.constants.MAX_FPS
+        self.pacer = Pacer(self._ask_cursor_position, LoopTimer,
+                           limit if fps is None else min(fps, limit))
         self._encoder = encoder
         self._notice = notice
         self._history = History()

@@ -11,7 +11,8 @@ import pytest
 
 from biceps.engine.config import load_config
 from biceps.engine.scene import Scene, SceneRenderer
-from pty_app import UPPER_HALF, first_picture
+from biceps.tui.changes import TURN_STEP
+from pty_app import UPPER_HALF, first_picture, shown_after
 from vt import Screen
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -66,6 +67,24 @@ def test_the_picture_on_the_terminal_is_the_frame_exactly(config_path, tmp_path,
     shown = screen.pixels(1, 1, width, height)
     frame = SceneRenderer().render(Scene.of(load_config(config_path)), width, 2 * height)
     np.testing.assert_array_equal(shown, frame)
+
+
+def test_the_picture_and_its_caption_on_the_terminal_follow_the_keys(config_path):
+    # The viewport writes its frames itself, between Textual's own updates
+    # (tui/widgets/viewport.py): what the terminal makes of both is the latest frame,
+    # exactly, with the caption of its view.
+    scene = Scene.of(load_config(config_path))
+    scene = scene.with_view(yaw=scene.view.yaw + 3 * TURN_STEP)
+    caption = f"yaw {scene.view.yaw:g}°"
+    output = shown_after([sys.executable, "-m", "biceps", "app", str(config_path)], cwd=ROOT,
+                         keys=b"\x1b[C" * 3, expected=caption.encode()).decode()
+    screen = Screen(100, 30).feed(output)
+    assert screen.text(0).startswith(f"╭─ {caption} ")
+    right = screen.text(0).index("╮")
+    bottom = next(y for y in range(30) if screen.text(y).startswith("╰"))
+    width, height = right - 1, bottom - 1
+    frame = SceneRenderer().render(scene, width, 2 * height)
+    np.testing.assert_array_equal(screen.pixels(1, 1, width, height), frame)
 
 
 def test_after_its_frame_the_app_asks_where_the_cursor_is(config_path):

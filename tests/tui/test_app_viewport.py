@@ -1,7 +1,9 @@
-"""The viewport repaints only the lines a new frame changed, and nothing for the same frame."""
+"""The viewport repaints only the lines a new frame changed, and nothing for the same frame;
+it writes them itself, as Textual would, unless something else is drawn over it."""
 
 from __future__ import annotations
 
+import re
 import time
 
 import pytest
@@ -9,14 +11,25 @@ import pytest
 from textual._compositor import ChopsUpdate
 
 from biceps.engine.scene import SceneRenderer
+from biceps.tui.app import BicepsApp
 from biceps.tui.widgets.viewport import Viewport
+from vt import Screen
+from waiting import until
+
+# A cursor move the viewport writes a line after (not the one that leaves the cursor where
+# Textual keeps it, at the end of the update).
+LINE_WRITTEN = re.compile(r"\x1b\[(\d+);\d+H(?!$|\x1b\[\?2026l)")
 
 
 def _record_painted(monkeypatch, border: int) -> list[int]:
-    """Every line of the viewport's picture Textual writes to the terminal, in order, and
-    ``border`` rows above and below it."""
+    """Every line of the viewport's picture written to the terminal, in order, by Textual
+    or by the viewport itself, and ``border`` rows above and below it."""
     lines: list[int] = []
-    repainted = Viewport.repainted
+    repainted, write = Viewport.repainted, Viewport._write_synchronized
+
+    def record(viewport, rows) -> None:
+        area = viewport.content_region
+        lines.extend(y - area.y for y in rows if area.y - border <= y < area.bottom + border)
 
     def recording(viewport, update):
         area = viewport.content_region
@@ -24,10 +37,15 @@ def _record_painted(monkeypatch, border: int) -> list[int]:
             rows = [y for y, x1, x2 in update.spans if x1 < area.right and x2 >= area.x]
         else:
             rows = list(range(area.y - border, area.bottom + border))
-        lines.extend(y - area.y for y in rows if area.y - border <= y < area.bottom + border)
+        record(viewport, rows)
         return repainted(viewport, update)
 
+    def writing(viewport, text):
+        record(viewport, [int(row) - 1 for row in LINE_WRITTEN.findall(text)])
+        return write(viewport, text)
+
     monkeypatch.setattr(Viewport, "repainted", recording)
+    monkeypatch.setattr(Viewport, "_write_synchronized", writing)
     return lines
 
 
@@ -106,3 +124,59 @@ async def test_a_slow_picture_says_it_is_being_drawn_until_it_comes(biceps, monk
         assert viewport.border_subtitle == "drawing…"
         await session.settle()
         assert viewport.border_subtitle.startswith("phong")
+
+
+def _as_textual_writes_it(app) -> Screen:
+    """The screen as Textual would write all of it now."""
+    strips = app.screen._compositor.render_strips()  # (private: Textual is pinned to 8.x)
+    return Screen(*app.size).feed("".join(
+        f"\x1b[{y + 1};1H{strip.render(app.console)}" for y, strip in enumerate(strips)
+    ))
+
+
+async def test_the_viewport_writes_a_frame_as_textual_would(biceps):
+    written: list[str] = []
+    async with biceps(size=(100, 30)) as session:
+        app, viewport = session.app, session.app.screen.query_one(Viewport)
+        app._driver.write = written.append  # headless: Textual itself writes nothing
+        await session.pilot.press("right")  # a new picture, and a new title
+        await session.settle()
+        text = "".join(written)
+        rows = {int(row) - 1 for row in LINE_WRITTEN.findall(text)}
+        region = viewport.region
+        assert region.y in rows  # the title's border row
+        assert len(rows) > 10 and rows <= set(range(region.y, region.bottom))
+        ours, textual = Screen(*app.size).feed(text), _as_textual_writes_it(app)
+        for y in rows:
+            assert (ours.cells[y][region.x:region.right]
+                    == textual.cells[y][region.x:region.right]), f"row {y}"
+        # Each frame all at once, where the terminal can.
+        assert text.startswith("\x1b[?2026h") == app._sync_available
+
+
+async def test_a_frame_goes_through_textual_while_something_is_over_the_picture(config,
+                                                                               painted):
+    written: list[str] = []
+    app = BicepsApp(config)
+    async with app.run_test(size=(100, 30), notifications=True) as pilot:
+        viewport = app.screen.query_one(Viewport)
+        app._driver.write = written.append  # headless: Textual itself writes nothing
+        await _caught_up(pilot, viewport)
+        app.notify("over the picture's lower right corner", timeout=0.5)
+        await pilot.pause(0.1)
+        painted.clear()
+        written.clear()
+        await pilot.press("right")
+        await _caught_up(pilot, viewport)
+        assert painted  # by Textual
+        assert not LINE_WRITTEN.findall("".join(written))
+        await pilot.pause(1.0)  # the notification gone
+        await pilot.press("right")
+        await _caught_up(pilot, viewport)
+        assert LINE_WRITTEN.findall("".join(written))
+        assert viewport.border_title.startswith(f"yaw {app.scene.view.yaw:g}°")
+
+
+async def _caught_up(pilot, viewport: Viewport) -> None:
+    await until(pilot, lambda: viewport.up_to_date)
+    await pilot.pause()

@@ -14,6 +14,12 @@ A frame is handed to the UI only when the :class:`~tui.pacing.Pacer` says the te
 taken the last one; meanwhile the worker draws the next (the newest request), so that only
 its encoding is left to do once the terminal has answered (see `STALE_AFTER`).
 
+The viewport writes a frame's new lines to the terminal itself, framed in its border, as
+Textual would write them, whenever nothing else is drawn over it (:meth:`Viewport._wrote`);
+otherwise (a notification over its corner, say) Textual's compositor does, as it does the
+rest of the screen. Either way Textual's own repaints take the same lines from
+:meth:`Viewport.render_lines`.
+
 An encoder of real pixels (``tui/pixels.py``) paints its image over the picture's cells, so
 the image is written only while the viewport's screen is the one shown (a dialog or the
 help screen would be painted over), taken off when another screen comes up or the size
@@ -155,6 +161,7 @@ class Viewport(Widget, can_focus=True):
         self._captions = ("", "")  # on the border now
         self._frame_captions = ("", "")  # those of the frame on screen
         self._captioning: int | None = None  # the border row of the caption being set
+        self._captioning_for_writing = False  # whether that row is written with the frame
         self._progress_at = 0.0  # when the last frame came, or the wait for one began
         self._progress_timer: Timer | None = None
 
@@ -285,11 +292,60 @@ class Viewport(Widget, can_focus=True):
                                  len(picture.strips))
         self._shown = message.number
         self._progress_at = monotonic()
+        self._frame_captions = _view_captions(message.scene, message.height)
+        if self._wrote(picture.changed):
+            self._pacer.after_frame(self._requests.done)
+            return
         if picture.changed:  # (no regions would mean all of them)
             self.refresh(*(self._rows(y, rows) for y, rows in picture.changed))
-        self._frame_captions = _view_captions(message.scene, message.height)
         self._caption(*self._frame_captions)
         self.call_after_refresh(self._when_drawn, DRAW_TRIES)
+
+    def _wrote(self, changed: Sequence[tuple[int, int]]) -> bool:
+        """Write the ``changed`` lines of the picture, and any border row whose caption
+        changed, straight to the terminal, each as Textual would write it, in one update;
+        or, if anything else is drawn over the widget (or it is not lines of cells at its
+        size, framed in the border's sides alone), leave them to Textual. Whether it
+        wrote them."""
+        # Textual would take 1.5 ms of the UI thread a frame (at 200x60) to find what a
+        # frame changed, styling every widget on the screen, when the encoder has said
+        # which lines changed and the viewport has framed them already. Private
+        # attributes: Textual is pinned to 8.x.
+        app = self.app
+        if (self._image or app._batch_count or app.is_inline or app._driver is None
+                or not self._on_top or self._latest_size != self.size
+                or not self._in_full_view()):
+            return False
+        sides = self._sides()
+        if sides is None:
+            return False
+        console, (width, _), top = app.console, self.size, self.styles.gutter.top
+        lines = [(top + y, self._framed(y, width, sides, console))
+                 for first, rows in changed for y in range(first, first + rows)]
+        lines += [(top + y, *self._styled(top + y, top + y + 1))
+                  for y in self._caption(*self._frame_captions, written=True)]
+        if lines:
+            x, y = self.region.offset
+            # Where Textual leaves the cursor after each update.
+            cursor = self.screen.outer_size.clamp_offset(app.cursor_position)
+            self._write_synchronized("".join([
+                *[f"\x1b[{y + row + 1};{x + 1}H{line.render(console)}" for row, line in lines],
+                f"\x1b[{cursor.y + 1};{cursor.x + 1}H",
+            ]))
+        return True
+
+    def _in_full_view(self) -> bool:
+        """Whether all of the widget is on screen, with no other widget over any of it."""
+        region = self.region
+        if not self.app.size.region.contains_region(region):
+            return False  # the terminal shrank, and Textual has yet to lay the screen out
+        # Front to back: the widgets after this one (its containers) are behind it.
+        for widget, (place, clip) in self.screen._compositor.visible_widgets.items():
+            if widget is self:
+                return clip.contains_region(region)
+            if place.intersection(clip).overlaps(region):
+                return False
+        return False  # not on screen at all
 
     def _when_drawn(self, tries: int) -> None:
         # Once Textual has written this frame, the pacer says when the next may be made.
@@ -318,12 +374,15 @@ class Viewport(Widget, can_focus=True):
 
     def _write_image(self, image: str) -> None:
         x, y = self.content_region.offset
-        text = f"\x1b7\x1b[{y + 1};{x + 1}H{image}\x1b8"
+        # (never half an image on screen)
+        self._write_synchronized(f"\x1b7\x1b[{y + 1};{x + 1}H{image}\x1b8")
+        self._image_on_screen = True
+
+    def _write_synchronized(self, text: str) -> None:
+        """Write ``text`` to be shown all at once, where the terminal can."""
         if self.app._sync_available:  # (private: Textual is pinned to 8.x)
-            # All at once where the terminal can: never half an image on screen.
             text = f"\x1b[?2026h{text}\x1b[?2026l"
         self._write(text)
-        self._image_on_screen = True
 
     def _write(self, text: str) -> None:
         # Straight to the driver, after the lines already queued there (as App.bell does).
@@ -340,26 +399,38 @@ class Viewport(Widget, can_focus=True):
         self.notify(f"The picture cannot be drawn: {message.reason}", severity="error",
                     markup=False)
 
-    def _caption(self, title: str, subtitle: str) -> None:
+    def _caption(self, title: str, subtitle: str, written: bool = False) -> list[int]:
+        """Set the captions on the border; the rows that changed (``-1`` the top border,
+        the picture's height the bottom one). Textual repaints them, unless they are to be
+        ``written`` with the frame."""
         # Each caption is set only if it changed: setting one repaints its row, and a
         # turn changes the title alone.
         top, bottom = self.styles.gutter.top, self.styles.gutter.bottom
+        changed = []
         for row, caption, shown, attribute in (
                 (-top, title, self._captions[0], "border_title"),
                 (self.size.height + bottom - 1, subtitle, self._captions[1], "border_subtitle")):
             if caption != shown:
-                self._captioning = row  # see refresh
+                self._captioning, self._captioning_for_writing = row, written  # see refresh
                 try:
                     setattr(self, attribute, caption)
                 finally:
                     self._captioning = None
+                changed.append(row)
         self._captions = title, subtitle
+        return changed
 
     def refresh(self, *regions: Region, **options) -> Viewport:
         if self._captioning is not None and not regions:
             # Setting a border title repaints the whole widget, picture and all, though
             # only its own row changes.
-            regions = (self._rows(self._captioning, 1),)
+            row = self._rows(self._captioning, 1)
+            if self._captioning_for_writing:
+                # Written with the frame: the row need only be styled again. (A private
+                # attribute: Textual is pinned to 8.x.)
+                self._styles_cache.set_dirty(row.translate(self.content_offset))
+                return self
+            regions = (row,)
         return super().refresh(*regions, **options)
 
     def _rows(self, y: int, rows: int) -> Region:
