@@ -183,10 +183,10 @@ def prepare_outline() -> None:
 
 def prepare_framing() -> None:
     """:func:`prepare_outline`, and the kernel that aims the camera at the outline
-    (``engine/transforms.py``'s fit_points)."""
+    (``engine/scene.py``'s fit_points)."""
     import numpy as np
 
-    from biceps.engine.transforms import fit_points
+    from biceps.engine.scene import fit_points
 
     prepare_outline()
     fit_points(np.zeros((1, 3)), 1.0)

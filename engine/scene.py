@@ -2,7 +2,7 @@
 
 The camera frames the arm as it is posed and turned: it looks at the middle of the turned
 arm's extent, from as close as keeps every vertex within ``FILL`` of the picture's edges
-(`transforms.fit_points`), so the arm is as large as the picture allows, centred, in every
+(`fit_points`), so the arm is as large as the picture allows, centred, in every
 pose. The view turns the model about the centre of its bounding box, moves it by its offset,
 then scales it about the point the camera looks at: zooming grows the picture about its
 own centre, wherever the model was moved, and never pushes the middle of the arm out. The
@@ -11,6 +11,7 @@ light, which stays put as the model turns, scales with it, so zooming does not r
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -19,11 +20,11 @@ from biceps.engine import coldstart
 from biceps.engine.anatomy import arm_parts, tendon_share
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, rgb
-from biceps.engine.jit import ngjit
+from biceps.engine.jit import exact, ngjit
 from biceps.engine.mesh import Mesh
 from biceps.engine.render import Renderer
 from biceps.engine.settings import RenderSettings, View
-from biceps.engine.transforms import (Camera, Light, fit_points, model_matrix, scale_matrix,
+from biceps.engine.transforms import (Camera, Light, model_matrix, scale_matrix,
                                       transform_points, translation_matrix)
 
 FILL = 0.9
@@ -192,6 +193,69 @@ def _farthest_along(directions, points, farthest, best):
             reach = directions[0, k] * x + directions[1, k] * y + directions[2, k] * z
             if reach > best[k]:
                 best[k], farthest[k] = reach, i
+
+
+def fit_points(points, aspect: float, fov_y_deg: float = 35.0, fill: float = 0.9,
+               scale: float = 1.0) -> Camera:
+    """The tightest centred framing of ``points`` (n, 3) (world space): a camera on their
+    ``+z`` side looking down ``-z``, as close as it can be with every point within ``fill``
+    of the view's half-width and half-height, aimed so that their picture is centred.
+
+    aspect: width / height of the view. ``scale`` (the model's zoom about the target) only
+    pushes the far plane out so a scaled-up model is not cut off.
+
+    From an eye at ``(cx, cy, e)``, a point ``(x, y, z)`` is in view when
+    ``|x - cx| <= (e - z) tan_x`` and ``|y - cy| <= (e - z) tan_y``: for a given aim the
+    least ``e`` is the largest of ``z + |x - cx| / tan_x`` and ``z + |y - cy| / tan_y`` over
+    the points, exact in perspective. Aimed first at the middle of the points' extents, the
+    picture of a deep model is off centre (its near end looks larger), so the aim then moves
+    by the picture's own offset, a few times over.
+    """
+    points = np.asarray(points, dtype=np.float64)
+    low, high = points.min(axis=0), points.max(axis=0)
+    aim = (low + high) / 2.0
+    tan_y = math.tan(math.radians(fov_y_deg) / 2.0) * fill
+    eye_z = _aim(np.ascontiguousarray(points), tan_y * aspect, tan_y, aim)
+    distance = eye_z - aim[2]
+    reach = float(np.linalg.norm(high - low)) / 2.0
+    return Camera(
+        eye=(float(aim[0]), float(aim[1]), eye_z),
+        target=tuple(float(c) for c in aim), fov_y_deg=fov_y_deg,
+        near=0.05 * distance, far=distance + 8.0 * reach * max(scale, 1.0),
+    )
+
+
+@exact
+def _aim(points, tan_x, tan_y, aim):
+    """Move ``aim`` (3,) float64, the middle of ``points``' (n, 3) extents, by the picture's
+    own offset four times over (see :func:`fit_points`); the least eye ``z`` for that aim.
+    A kernel: numpy took 0.1 ms a frame (at 60 a second) on the outline's hundred-odd
+    points, in thirty calls on arrays of two columns."""
+    for _ in range(4):
+        eye_z = _least_eye_z(points, tan_x, tan_y, aim)
+        low_x = low_y = np.inf
+        high_x = high_y = -np.inf
+        for i in range(points.shape[0]):
+            depth = eye_z - points[i, 2]
+            # each point's place in the picture, in tan
+            seen_x, seen_y = (points[i, 0] - aim[0]) / depth, (points[i, 1] - aim[1]) / depth
+            # (numpy's minimum and maximum, which keep a NaN, as its reductions do)
+            low_x, high_x = np.minimum(low_x, seen_x), np.maximum(high_x, seen_x)
+            low_y, high_y = np.minimum(low_y, seen_y), np.maximum(high_y, seen_y)
+        aim[0] += (low_x + high_x) / 2.0 * (eye_z - aim[2])
+        aim[1] += (low_y + high_y) / 2.0 * (eye_z - aim[2])
+    return _least_eye_z(points, tan_x, tan_y, aim)
+
+
+@exact
+def _least_eye_z(points, tan_x, tan_y, aim):
+    """The least eye ``z`` from which every one of ``points`` is in view, aimed at ``aim``."""
+    eye_z = -np.inf
+    for i in range(points.shape[0]):
+        reach = np.maximum(abs(points[i, 0] - aim[0]) / tan_x,
+                           abs(points[i, 1] - aim[1]) / tan_y)
+        eye_z = np.maximum(eye_z, points[i, 2] + reach)
+    return eye_z
 
 
 def view_camera(view: View, vertices: np.ndarray, aspect: float) -> tuple[Camera, np.ndarray]:

@@ -23,7 +23,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from biceps.engine.jit import exact
 from biceps.engine.settings import Limits, number, point, settle
 
 
@@ -213,66 +212,3 @@ def frame_camera(bounds_min, bounds_max, aspect: float, fov_y_deg: float = 35.0,
     far = float(distance + 4.0 * np.linalg.norm(half) + 10.0 * near)
     return Camera(eye=eye, target=tuple(float(c) for c in centre), fov_y_deg=fov_y_deg,
                   near=near, far=far)
-
-
-def fit_points(points, aspect: float, fov_y_deg: float = 35.0, fill: float = 0.9,
-               scale: float = 1.0) -> Camera:
-    """The tightest centred framing of ``points`` (n, 3) (world space): a camera on their
-    ``+z`` side looking down ``-z``, as close as it can be with every point within ``fill``
-    of the view's half-width and half-height, aimed so that their picture is centred.
-
-    aspect: width / height of the view. ``scale`` (the model's zoom about the target) only
-    pushes the far plane out so a scaled-up model is not cut off.
-
-    From an eye at ``(cx, cy, e)``, a point ``(x, y, z)`` is in view when
-    ``|x - cx| <= (e - z) tan_x`` and ``|y - cy| <= (e - z) tan_y``: for a given aim the
-    least ``e`` is the largest of ``z + |x - cx| / tan_x`` and ``z + |y - cy| / tan_y`` over
-    the points, exact in perspective. Aimed first at the middle of the points' extents, the
-    picture of a deep model is off centre (its near end looks larger), so the aim then moves
-    by the picture's own offset, a few times over.
-    """
-    points = np.asarray(points, dtype=np.float64)
-    low, high = points.min(axis=0), points.max(axis=0)
-    aim = (low + high) / 2.0
-    tan_y = math.tan(math.radians(fov_y_deg) / 2.0) * fill
-    eye_z = _aim(np.ascontiguousarray(points), tan_y * aspect, tan_y, aim)
-    distance = eye_z - aim[2]
-    reach = float(np.linalg.norm(high - low)) / 2.0
-    return Camera(
-        eye=(float(aim[0]), float(aim[1]), eye_z),
-        target=tuple(float(c) for c in aim), fov_y_deg=fov_y_deg,
-        near=0.05 * distance, far=distance + 8.0 * reach * max(scale, 1.0),
-    )
-
-
-@exact
-def _aim(points, tan_x, tan_y, aim):
-    """Move ``aim`` (3,) float64, the middle of ``points``' (n, 3) extents, by the picture's
-    own offset four times over (see :func:`fit_points`); the least eye ``z`` for that aim.
-    A kernel: numpy took 0.1 ms a frame (at 60 a second) on the outline's hundred-odd
-    points, in thirty calls on arrays of two columns."""
-    for _ in range(4):
-        eye_z = _least_eye_z(points, tan_x, tan_y, aim)
-        low_x = low_y = np.inf
-        high_x = high_y = -np.inf
-        for i in range(points.shape[0]):
-            depth = eye_z - points[i, 2]
-            # each point's place in the picture, in tan
-            seen_x, seen_y = (points[i, 0] - aim[0]) / depth, (points[i, 1] - aim[1]) / depth
-            # (numpy's minimum and maximum, which keep a NaN, as its reductions do)
-            low_x, high_x = np.minimum(low_x, seen_x), np.maximum(high_x, seen_x)
-            low_y, high_y = np.minimum(low_y, seen_y), np.maximum(high_y, seen_y)
-        aim[0] += (low_x + high_x) / 2.0 * (eye_z - aim[2])
-        aim[1] += (low_y + high_y) / 2.0 * (eye_z - aim[2])
-    return _least_eye_z(points, tan_x, tan_y, aim)
-
-
-@exact
-def _least_eye_z(points, tan_x, tan_y, aim):
-    """The least eye ``z`` from which every one of ``points`` is in view, aimed at ``aim``."""
-    eye_z = -np.inf
-    for i in range(points.shape[0]):
-        reach = np.maximum(abs(points[i, 0] - aim[0]) / tan_x,
-                           abs(points[i, 1] - aim[1]) / tan_y)
-        eye_z = np.maximum(eye_z, points[i, 2] + reach)
-    return eye_z
