@@ -12,8 +12,8 @@ to 3 once per share of a large mesh's vertices, a thread each):
 4. Only when some vertex is outside a clipping plane: ``clipping.clip_triangles`` cuts the
    triangles that cross one into a small mesh already in screen space, drawn after the
    others by the same kernels.
-5. Band by band, a thread each (``bands``): clear the band's rows
-   (``engine.render.clear``), then ``draw.rasterize_gouraud``, ``rasterize_phong`` or
+5. Band by band, a thread each (``bands``): clear what the last frame drew on the band's
+   rows (``draw.clear_drawn``), then ``draw.rasterize_gouraud``, ``rasterize_phong`` or
    ``rasterize_overdraw`` on them: per triangle, reject, cull, cover (``coverage``) and
    shade (``shading``); then ``resample.downsample`` averages supersampled pixels.
 
@@ -41,7 +41,8 @@ compiled again.
 from biceps.engine.raster.clipping import (BOTTOM, CLIP_MASK, FAR, INVALID, LEFT, MAX_POLYGON,
                                            NEAR, RIGHT, TOP, clip_triangles)
 from biceps.engine.raster.coverage import band_spans, triangle_spans
-from biceps.engine.raster.draw import rasterize_gouraud, rasterize_overdraw, rasterize_phong
+from biceps.engine.raster.draw import (clear_drawn, rasterize_gouraud, rasterize_overdraw,
+                                       rasterize_phong)
 from biceps.engine.raster.resample import downsample
 from biceps.engine.raster.shading import Lighting, highlight_threshold
 from biceps.engine.raster.vertex import (light_vertices, phong_vertices, project_vertices,

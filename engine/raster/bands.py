@@ -98,15 +98,24 @@ class Bands:
         fine_h, fine_w = height * ssaa, width * ssaa
         hits = max(2 * fine_w, HITS)
         self.scratch = [
-            (np.empty((2, fine_h), np.int64), np.empty((11, 3)), np.empty(hits, np.int64),
+            (np.empty((4, fine_h), np.int64), np.empty((11, 3)), np.empty(hits, np.int64),
              np.empty((8, hits), np.float32), np.empty(3 * fine_w, np.int32))
             for _ in self.rows
         ]
         self._shape = (height, width, ssaa)
+        self.forget_drawn()
+
+    def forget_drawn(self) -> None:
+        """Have the next frame clear every row whole, as if the last had drawn on all of
+        them (``draw.clear_drawn``): the buffers are new, or the background is not the
+        last frame's."""
+        _, width, ssaa = self._shape
+        for spans, *_ in self.scratch:
+            spans[2], spans[3] = 0, width * ssaa
 
     def draw(self, draw_band) -> None:
         """Call ``draw_band(start, end, scratch)`` for every band at once: its rows
         ``start <= y < end`` of the fine frame, and its scratch (spans, planes, hits,
-        shaded, columns)."""
+        shaded, columns; the spans' last two rows kept from frame to frame)."""
         run_all(lambda rows=rows, scratch=scratch: draw_band(*rows, scratch)
                 for rows, scratch in zip(self.rows, self.scratch))

@@ -27,14 +27,16 @@ WIDTH, HEIGHT = 401, 271
 pixels even drawn once a pixel, so that the picture is drawn in bands."""
 
 
-def frame(scene: Scene, renderer: Renderer, width: int, height: int) -> np.ndarray:
+def frame(scene: Scene, renderer: Renderer, width: int, height: int,
+          background=(0, 0, 0)) -> np.ndarray:
     """The scene as `SceneRenderer` draws it, by ``renderer``: a copy."""
     mesh, albedo = scene_mesh(scene.arm, scene.render)
     camera, model = view_camera(scene.view, outline(mesh.vertices), width / height)
     light = zoomed_light(scene.light, scene.view.scale, camera)
     return renderer.render(mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
                            light, width, height, shading=scene.render.shading,
-                           ssaa=supersampling(scene.render, height)).copy()
+                           ssaa=supersampling(scene.render, height),
+                           background=background).copy()
 
 
 @pytest.mark.parametrize("threads", [2, 3, 7])
@@ -74,6 +76,24 @@ def test_a_renderer_that_drew_another_view_draws_what_a_fresh_one_draws():
     for scene, picture in zip(views, drawn):
         np.testing.assert_array_equal(picture, frame(scene, Renderer(threads=1), 160, 96))
     assert not np.array_equal(drawn[0], drawn[1])
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_a_frame_leaves_nothing_of_the_last_behind(threads):
+    # Each frame clears only what the last drew (draw.clear_drawn): a close-up, then the arm
+    # small in a corner of the picture, a new background, a new size, a light moved.
+    base = Scene.of(load_config(DEFAULT_CONFIG))
+    close_up = base.with_view(scale=9.0, yaw=40.0)
+    small = base.with_view(scale=0.4, offset=(30.0, -20.0, 0.0))
+    frames = [(close_up, (18, 22, 28), WIDTH), (small, (18, 22, 28), WIDTH),
+              (close_up, (18, 22, 28), WIDTH), (close_up, (200, 0, 90), WIDTH),
+              (small, (200, 0, 90), WIDTH - 40), (base.with_light(position=(-80.0, 20.0, 60.0)),
+                                                   (200, 0, 90), WIDTH - 40)]
+    renderer = Renderer(threads=threads)
+    for scene, background, width in frames:
+        drawn = frame(scene, renderer, width, HEIGHT, background)
+        fresh = frame(scene, Renderer(threads=threads), width, HEIGHT, background)
+        np.testing.assert_array_equal(drawn, fresh)
 
 
 def test_a_band_holds_exactly_the_spans_of_its_rows():

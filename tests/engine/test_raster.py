@@ -74,8 +74,10 @@ def draw_on_screen(points, triangles, width, height, *, colours=None,
     colour = np.zeros((height, width, 3), np.uint8)
     depths = np.zeros(height * width, np.float32)  # the far plane
     triangles = np.ascontiguousarray(triangles, dtype=np.int32)
+    spans = np.empty((4, height), np.int64)
+    spans[2], spans[3] = width, 0  # nothing drawn yet
     kernel(triangles, xy, z, q, codes, attributes, raster.Lighting(*[0.0] * 11),
-           colour.reshape(-1), depths, width, 0, height, np.empty((2, height), np.int64),
+           colour.reshape(-1), depths, width, 0, height, spans,
            np.empty((11, 3)), np.empty(width, np.int64), np.empty((8, width), np.float32))
     return colour
 
