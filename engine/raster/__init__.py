@@ -50,7 +50,7 @@ from biceps.engine.raster.vertex import (light_vertices, phong_vertices, project
 
 __all__ = [
     "BOTTOM", "CLIP_MASK", "FAR", "INVALID", "LEFT", "MAX_POLYGON", "NEAR", "RIGHT", "TOP",
-    "Lighting", "band_spans", "clip_triangles", "downsample",
+    "Lighting", "band_spans", "clear_drawn", "clip_triangles", "downsample",
     "highlight_threshold", "light_vertices", "phong_vertices", "project_vertices",
     "rasterize_gouraud", "rasterize_overdraw", "rasterize_phong", "transform_vertices",
     "triangle_spans",
