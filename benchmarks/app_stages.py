@@ -45,7 +45,6 @@ STAGES = {
     "    the update's text": ("textual._compositor", "ChopsUpdate.render_segments"),
     "a frame received": ("biceps.tui.widgets.viewport", "Viewport.on_viewport_frame_rendered"),
     "  written by the viewport": ("biceps.tui.widgets.viewport", "Viewport._wrote"),
-    "    its lines framed": ("biceps.tui.widgets.viewport", "Viewport._framed"),
     "    its border rows": ("biceps.tui.widgets.viewport", "Viewport._styled"),
     "the SGR minimiser, all writes": ("biceps.tui.sgr", "minimized"),
     "a turn": ("biceps.tui.app", "BicepsApp.action_turn"),

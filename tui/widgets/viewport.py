@@ -320,16 +320,19 @@ class Viewport(Widget, can_focus=True):
         if sides is None:
             return False
         console, (width, _), top = app.console, self.size, self.styles.gutter.top
-        lines = [(top + y, self._framed(y, width, sides, console))
+        # A strip's text is its segments' texts one after the other: a line framed is the
+        # sides' texts around the line's.
+        left, right = (side.render(console) for side in sides)
+        lines = [(top + y, f"{left}{self._line(y, width).render(console)}{right}")
                  for first, rows in changed for y in range(first, first + rows)]
-        lines += [(top + y, *self._styled(top + y, top + y + 1))
+        lines += [(top + y, self._styled(top + y, top + y + 1)[0].render(console))
                   for y in self._caption(*self._frame_captions, written=True)]
         if lines:
             x, y = self.region.offset
             # Where Textual leaves the cursor after each update.
             cursor = self.screen.outer_size.clamp_offset(app.cursor_position)
             self._write_synchronized("".join([
-                *[f"\x1b[{y + row + 1};{x + 1}H{line.render(console)}" for row, line in lines],
+                *[f"\x1b[{y + row + 1};{x + 1}H{text}" for row, text in lines],
                 f"\x1b[{cursor.y + 1};{cursor.x + 1}H",
             ]))
         return True
