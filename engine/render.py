@@ -118,9 +118,10 @@ class Renderer:
                 rasterizer: bool = True) -> None:
         """Compile, or load from numba's cache, the kernels a frame in ``shading`` with
         ``ssaa`` supersampling runs, or those of one stage, without drawing anything (see
-        ``engine/coldstart.py``). The downsampling of a supersampled frame comes with
-        either stage: the rasterizer, much the longest to compile, can then be prepared
-        alone (``ssaa`` 1) while the vertex stage and the downsampling are prepared beside.
+        ``engine/coldstart.py``). The clearing comes with the vertex stage, and the
+        downsampling of a supersampled frame with either stage: the rasterizer, much the
+        longest to compile, can then be prepared alone (``ssaa`` 1) while the rest is
+        prepared beside.
 
         Each kernel runs once on buffers of the kinds `render` passes it, for one vertex,
         no triangle and one pixel, so that numba makes the very version `render` calls.
@@ -134,11 +135,12 @@ class Renderer:
             self._normals.fill(0.0)
             self._transform(shading, Light(), np.zeros((1, 3), np.float32), np.eye(4),
                             np.eye(4), 1, 1)
-        if rasterizer or ssaa > 1:
-            no_triangles = _read_only(np.zeros((0, 3), np.int32))
-            meshes = [(no_triangles, self._screen_xy, self._screen_z, self._screen_q,
-                       self._outcodes, self._attributes(shading))] if rasterizer else []
-            self._draw(rasterize, meshes, _lighting(Light(), Camera()), (0, 0, 0))
+        no_triangles = _read_only(np.zeros((0, 3), np.int32))
+        meshes = [(no_triangles, self._screen_xy, self._screen_z, self._screen_q,
+                   self._outcodes, self._attributes(shading))] if rasterizer else []
+        if meshes or vertex_stage or ssaa > 1:
+            self._draw(rasterize, meshes, _lighting(Light(), Camera()), (0, 0, 0),
+                       clear=vertex_stage)
 
     def _transform(self, shading, light, albedo, model, view_projection, width, height):
         """The vertex stage, from the vertices and normals copied in: world positions and
@@ -192,10 +194,11 @@ class Renderer:
         buffers = {"gouraud": self._colours, "phong": self._phong_attributes}
         return buffers.get(shading, self._no_attributes)
 
-    def _draw(self, rasterize, meshes, lighting, background) -> None:
-        """Clear the frame, draw ``meshes`` into it (each a tuple of triangles, screen_xy,
-        screen_z, screen_q, outcodes, attributes), in order, and average it down if it is
-        supersampled: band by band, a thread each (``engine/raster/bands.py``)."""
+    def _draw(self, rasterize, meshes, lighting, background, clear: bool = True) -> None:
+        """Clear the frame (unless not to ``clear``: see `prepare`), draw ``meshes`` into it
+        (each a tuple of triangles, screen_xy, screen_z, screen_q, outcodes, attributes), in
+        order, and average it down if it is supersampled: band by band, a thread each
+        (``engine/raster/bands.py``)."""
         full_h, full_w = self._depth.shape
         _, width, ssaa = self._frame
         pixels, depths = self._colour.reshape(-1), self._depth.reshape(-1)
@@ -207,7 +210,9 @@ class Renderer:
 
         def draw_band(start, end, scratch):
             spans, planes, hits, shaded, columns = scratch
-            raster.clear_drawn(pixels, depths, full_w, start, end, spans, red, green, blue)
+            if clear:
+                raster.clear_drawn(pixels, depths, full_w, start, end, spans, red, green,
+                                   blue)
             for triangles, xy, z, q, outcodes, attributes in meshes:
                 rasterize(triangles, xy, z, q, outcodes, attributes, lighting, pixels, depths,
                           full_w, start, end, spans, planes, hits, shaded)
