@@ -25,7 +25,8 @@ class KeyCommands(Provider):
             keys: dict[str, list[str]] = {}
             descriptions: dict[str, str] = {}
             for binding in Binding.make_bindings(type(owner).BINDINGS):
-                if binding.description:
+                # (a priority binding of the app's repeats one of its others: the arrows')
+                if binding.description and not binding.priority:
                     keys.setdefault(binding.action, []).append(app.get_key_display(binding))
                     descriptions[binding.action] = binding.description
             for action, shown in keys.items():

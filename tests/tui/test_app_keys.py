@@ -4,6 +4,7 @@ import pytest
 from textual import events
 
 from biceps.tui.app import BicepsApp
+from biceps.tui.changes import TURN_STEP
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.viewport import Viewport
 
@@ -156,3 +157,32 @@ async def test_keys_queued_while_the_app_was_busy_show_their_numbers_once(biceps
         assert session.app.scene.arm.length == 30.0
         assert shown[-1] == 30.0  # the latest, and
         assert len(shown) <= 2  # not a queue of 30 updates
+
+
+async def test_the_arrows_turn_the_picture_at_once_while_it_has_the_focus(biceps, monkeypatch):
+    # Priority bindings (BicepsApp.action_turn_in_view): the key is not sent on through
+    # the widgets first.
+    reached = []
+    monkeypatch.setattr(Viewport, "on_key", lambda self, event: reached.append(event.key),
+                        raising=False)
+    async with biceps() as session:
+        app = session.app
+        assert isinstance(app.focused, Viewport)
+        yaw = app.scene.view.yaw
+        await session.pilot.press("right", "right")
+        assert app.scene.view.yaw == yaw + 2 * TURN_STEP
+        await session.pilot.press("x")
+        assert reached == ["x"]  # (a key no priority binding takes does reach it)
+
+
+async def test_with_the_node_table_focused_up_and_down_move_in_it_and_left_right_turn(biceps):
+    async with biceps() as session:
+        app = session.app
+        table = app.screen.query_one(NodeTable)
+        table.focus()
+        await session.pilot.pause()
+        view, row = app.scene.view, table.cursor_row
+        await session.pilot.press("down", "down", "up")
+        assert table.cursor_row == row + 1 and app.scene.view == view
+        await session.pilot.press("left")
+        assert app.scene.view.yaw == view.yaw - TURN_STEP
