@@ -192,19 +192,23 @@ def prepare_framing() -> None:
     fit_points(np.zeros((1, 3)), 1.0)
 
 
+def prepare_around_the_rasterizer(shading: str, ssaa: int = 1) -> None:
+    """Compile, or load from the cache, what a frame in ``shading`` with ``ssaa``
+    supersampling runs before and after the rasterizer: the framing, the vertex stage,
+    the clearing and the downsampling."""
+    from biceps.engine.render import Renderer
+
+    prepare_framing()
+    Renderer().prepare(shading, ssaa, rasterizer=False)
+
+
 def prepare_kernels(shading: str, ssaa: int = 1) -> None:
     """Compile, or load from the cache, the kernels of a frame in ``shading`` with ``ssaa``
     supersampling, the rasterizer's in a child process (see :func:`compile_aside`) while
     this one does the rest: with a warm cache, once the rest has come from there, so,
     most likely, has the rasterizer, and the child is stopped."""
-    from biceps.engine.render import Renderer
-
-    def the_rest() -> None:
-        Renderer().prepare(shading, ssaa, rasterizer=False)
-        prepare_framing()
-
     compile_rasterizer_aside(shading)
-    stop_aside_if_cached(the_rest)
+    stop_aside_if_cached(lambda: prepare_around_the_rasterizer(shading, ssaa))
     wait_for_aside()
 
 

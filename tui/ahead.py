@@ -23,7 +23,6 @@ from textual.driver import Driver
 
 from biceps.engine import coldstart
 from biceps.engine.config import Config
-from biceps.engine.render import Renderer
 from biceps.engine.scene import supersampling
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.sgr import lean, minimized
@@ -70,11 +69,9 @@ def lean_once_ready(driver_class: type[Driver]) -> type[Driver]:
 
 def _prepare_around_the_rasterizer(shading: str, ssaa: int,
                                    encoder: PictureEncoder) -> None:
-    """What a frame runs before and after the rasterizer, on buffers of the kinds the
-    render thread passes: the framing, the vertex stage, the downsampling and the encoder,
+    """What a frame runs before and after the rasterizer (`coldstart`'s), and the encoder,
     given a read-only frame as the renderer returns."""
-    coldstart.prepare_framing()
-    Renderer().prepare(shading, ssaa, rasterizer=False)
+    coldstart.prepare_around_the_rasterizer(shading, ssaa)
     frame = np.zeros((encoder.cell.height, encoder.cell.width, 3), np.uint8)
     frame.flags.writeable = False
     encoder.encode(frame)
