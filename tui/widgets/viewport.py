@@ -160,8 +160,9 @@ class Viewport(Widget, can_focus=True):
         self._background = Style()
         self._captions = ("", "")  # on the border now
         self._frame_captions = ("", "")  # those of the frame on screen
-        self._captioning: int | None = None  # the border row of the caption being set
-        self._captioning_for_writing = False  # whether that row is written with the frame
+        # The border row of the caption being set, and whether it is written with the
+        # frame (see refresh).
+        self._captioning: tuple[Region, bool] | None = None
         self._progress_at = 0.0  # when the last frame came, or the wait for one began
         self._progress_timer: Timer | None = None
 
@@ -414,7 +415,7 @@ class Viewport(Widget, can_focus=True):
                 (-top, title, self._captions[0], "border_title"),
                 (self.size.height + bottom - 1, subtitle, self._captions[1], "border_subtitle")):
             if caption != shown:
-                self._captioning, self._captioning_for_writing = row, written  # see refresh
+                self._captioning = self._rows(row, 1), written
                 try:
                     setattr(self, attribute, caption)
                 finally:
@@ -427,8 +428,8 @@ class Viewport(Widget, can_focus=True):
         if self._captioning is not None and not regions:
             # Setting a border title repaints the whole widget, picture and all, though
             # only its own row changes.
-            row = self._rows(self._captioning, 1)
-            if self._captioning_for_writing:
+            row, written = self._captioning
+            if written:
                 # Written with the frame: the row need only be styled again. (A private
                 # attribute: Textual is pinned to 8.x.)
                 self._styles_cache.set_dirty(row.translate(self.content_offset))
