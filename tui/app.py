@@ -84,6 +84,12 @@ DRAG_TURN = 180.0  # degrees per picture height
 DRAG_MOVE = 70.0  # cm per picture height
 
 TURN = Binding.Group("Turn", compact=True)
+ARROWS = [  # key, yaw, pitch, what it does
+    ("left", -TURN_STEP, 0, "Turn left"),
+    ("right", TURN_STEP, 0, "Turn right"),
+    ("up", 0, -TURN_STEP, "Tip the top away"),
+    ("down", 0, TURN_STEP, "Tip the top towards you"),
+]
 
 
 class QuitAsked(Message):
@@ -96,20 +102,12 @@ class BicepsApp(App[None]):
     TITLE = "biceps"
     COMMANDS = App.COMMANDS | {KeyCommands}
     BINDINGS = [
-        Binding("left", f"turn({-TURN_STEP}, 0, 0)", "Turn left", group=TURN),
-        Binding("right", f"turn({TURN_STEP}, 0, 0)", "Turn right", group=TURN),
-        Binding("up", f"turn(0, {-TURN_STEP}, 0)", "Tip the top away", group=TURN),
-        Binding("down", f"turn(0, {TURN_STEP}, 0)", "Tip the top towards you", group=TURN),
-        # The same four again, as priority bindings that act only while the picture has the
-        # focus (see action_turn_in_view), shown in the footer as those above are.
-        Binding("left", f"turn_in_view({-TURN_STEP}, 0)", "Turn left", group=TURN,
-                priority=True),
-        Binding("right", f"turn_in_view({TURN_STEP}, 0)", "Turn right", group=TURN,
-                priority=True),
-        Binding("up", f"turn_in_view(0, {-TURN_STEP})", "Tip the top away", group=TURN,
-                priority=True),
-        Binding("down", f"turn_in_view(0, {TURN_STEP})", "Tip the top towards you",
-                group=TURN, priority=True),
+        *[Binding(key, f"turn({yaw}, {pitch}, 0)", does, group=TURN)
+          for key, yaw, pitch, does in ARROWS],
+        # The same again, as priority bindings that act only while the picture has the
+        # focus (see action_turn_in_view), shown in the footer as those are.
+        *[Binding(key, f"turn_in_view({yaw}, {pitch})", does, group=TURN, priority=True)
+          for key, yaw, pitch, does in ARROWS],
         Binding("left_square_bracket", f"turn(0, 0, {TURN_STEP})", "Roll anticlockwise",
                 show=False),
         Binding("right_square_bracket", f"turn(0, 0, {-TURN_STEP})", "Roll clockwise",
