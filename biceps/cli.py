@@ -208,13 +208,14 @@ def app(config: Path, colors: str, fps: float | None, graphics: str | None,
     from biceps.engine.config import load_config
 
     loaded = load_config(config)  # fail here, before the terminal switches screens
-    if _own_process():  # the longest compilation of a first run starts before Textual loads
+    compile_aside = _own_process()
+    if compile_aside:  # the longest compilation of a first run starts before Textual loads
         from biceps.engine.coldstart import compile_rasterizer_aside
 
         compile_rasterizer_aside(loaded.render.shading)
     from biceps.tui.app import run_app
 
-    status = run_app(loaded, colors=colors, fps=fps, compile_aside=_own_process(),
+    status = run_app(loaded, colors=colors, fps=fps, compile_aside=compile_aside,
                      graphics=graphics, pixel_scale=pixel_scale)
     if status:
         sys.exit(status)
