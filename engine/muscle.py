@@ -295,7 +295,7 @@ class Muscle:
             # nearly equal terms and loses digits: say so rather than show a wrong volume.
             raise RefusedChange(
                 f"cannot reach {length:.2f} cm at constant volume: so close to node "
-                f"{self.rest.law.first_to_vanish + 1}'s vanishing the volume cannot be kept "
+                f"{self.rest.law.first_to_thin + 1}'s vanishing the volume cannot be kept "
                 f"to {VOLUME_TOLERANCE:g} (it would be off by {muscle.volume_error:.1e})"
             )
         return muscle

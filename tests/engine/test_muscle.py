@@ -337,3 +337,36 @@ def test_inside_the_bounds_a_length_change_keeps_the_volume_or_says_why_not(musc
     assert changed.volume_error < 1e-12
     assert changed.radii.min() > 0
 
+
+
+CHANGES = 1_000  # lengths a profile is taken to; times the examples, 100,000 changes
+CHANGE_EXAMPLES = 100
+
+
+def any_lengths(muscle: Muscle, count: int):
+    """Lengths anywhere a person or a file could ask for: a hundredth to a hundred times
+    the muscle's, and, above all, a hair short of, at and past the longest it can be,
+    where the solve loses digits. Drawn from a seed, as :func:`feasible_lengths` are."""
+
+    def made(seed: int) -> np.ndarray:
+        rng = np.random.default_rng(seed)
+        anywhere = muscle.length * 10.0 ** rng.uniform(-2, 2, count)
+        longest = muscle.longest_length if np.isfinite(muscle.longest_length) else muscle.length
+        near = longest * (1 + rng.choice([-1, 1], count) * 10.0 ** rng.uniform(-17, -1, count))
+        return np.where(rng.random(count) < 0.5, anywhere, near)
+
+    return st.integers(0, 2**32 - 1).map(made)
+
+
+@settings(max_examples=CHANGE_EXAMPLES, deadline=None)
+@given(data=st.data())
+def test_any_length_change_keeps_the_volume_or_is_refused_in_words(data):
+    muscle = data.draw(bounded_profiles())
+    for length in data.draw(any_lengths(muscle, CHANGES)):
+        try:
+            changed = muscle.at_length(length)
+        except RefusedChange as refusal:
+            assert str(refusal).startswith("cannot ")
+            continue
+        assert changed.volume_error < 1e-12
+        assert changed.radii.min() > 0
