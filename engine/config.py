@@ -576,8 +576,12 @@ def _located(path: Path, source: str, location: tuple, message: str) -> str:
 
 
 # A header is alone on its line, so a node written [0.35, 0.0], inside a list is not one.
-_TABLE_HEADER = re.compile(r"^\s*\[\[?\s*([A-Za-z0-9_\-.\"' ]+?)\s*\]\]?\s*(?:#.*)?$")
-_ASSIGNMENT = re.compile(r"^\s*([A-Za-z0-9_\-.\"' ]+?)\s*=")
+# Matched against the stripped line, and possessively (*+, ++): a key's characters include
+# the space, and with the lazy key between optional spaces of the patterns before these, a
+# line of 2,000 spaces cost seconds to match (n^3), one of 100,000 for ever.
+_KEY = r"[A-Za-z0-9_\-.\"' ]"
+_TABLE_HEADER = re.compile(rf"\[\[?({_KEY}*+)\]\]?\s*+(?:#.*)?")
+_ASSIGNMENT = re.compile(rf"({_KEY}++)\s*+=")
 
 
 def _keys_by_line(source: str):
@@ -585,13 +589,14 @@ def _keys_by_line(source: str):
     what it names, as a tuple of keys), dotted keys and quoted keys taken apart."""
     table: tuple[str, ...] = ()
     for number, line in enumerate(source.splitlines(), start=1):
-        header = _TABLE_HEADER.match(line)
-        if header:
+        line = line.strip()
+        header = _TABLE_HEADER.fullmatch(line)
+        if header and header.group(1).strip():
             table = _dotted(header.group(1))
             yield number, table
             continue
         assignment = _ASSIGNMENT.match(line)
-        if assignment:
+        if assignment and assignment.group(1).strip():
             yield number, table + _dotted(assignment.group(1))
 
 

@@ -152,6 +152,16 @@ def _name_too_long(folder: Path) -> Path:
     return folder / ("x" * 300 + ".toml")
 
 
+def _long_lines_of_spaces(folder: Path) -> Path:
+    # Lines the error locator reads on its way to the bad value: patterns that backtrack
+    # take for ever over each (n^3 in its length).
+    path = folder / "spaces.toml"
+    spaces = " " * 100_000
+    path.write_text(f"[muscle]\n{spaces}\n{spaces}# [{spaces}\n{spaces}#\nlength = 'thirty'\n"
+                    "nodes = [[0.4, 0.0], [2.0, 2.0], [0.4, 0.0]]\n")
+    return path
+
+
 # Files made for each test, as they cannot be kept in the repository, and what the message
 # must say about each.
 MADE_CASES = {
@@ -163,6 +173,8 @@ MADE_CASES = {
     "a folder": (_folder, ": is a directory, not a regular file"),
     "a name too long": (_name_too_long, ": the name is 305 bytes long; a file name here has at "
                                         "most 255"),
+    "lines of 100,000 spaces": (_long_lines_of_spaces, ":5: muscle.length: must be a finite "
+                                                       "number above 0 cm (found 'thirty')"),
 }
 
 COMMANDS = {
