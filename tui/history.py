@@ -8,6 +8,7 @@ editor undoes a burst of typing at once.
 
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass
 
 from biceps.engine.arm import Arm
@@ -34,8 +35,12 @@ class Step:
 
 class History:
     def __init__(self) -> None:
-        self._undo: list[Step] = []
+        # The oldest undo step goes first when there are too many nodes: a deque drops it
+        # at no cost, and the count of the nodes kept is kept up to date, not summed again
+        # at each edit, so that an edit costs the same however long the history is.
+        self._undo: deque[Step] = deque()
         self._redo: list[Step] = []
+        self._kept = 0  # the nodes of every arm in self._undo
 
     @property
     def can_undo(self) -> bool:
@@ -53,31 +58,37 @@ class History:
         if run and last is not None and last.run and at - last.at < RUN_GAP:
             self._undo[-1] = Step(last.arm, last.what, run=True, at=at)
             return
-        self._undo.append(Step(before, what, run, at))
-        while len(self._undo) > 1 and _nodes(self._undo) > KEPT_NODES:
-            del self._undo[0]
+        self._push(Step(before, what, run, at))
+        while len(self._undo) > 1 and self._kept > KEPT_NODES:
+            self._kept -= _nodes(self._undo.popleft())
 
     def undo(self, current: Arm) -> Step | None:
         """The step to go back to (its arm, and what is undone), or None if there is none."""
-        return _moved(self._undo, self._redo, current)
+        if not self._undo:
+            return None
+        step = self._undo.pop()
+        self._kept -= _nodes(step)
+        self._redo.append(Step(current, step.what))
+        return step
 
     def redo(self, current: Arm) -> Step | None:
         """The step undone last, to do again, or None if there is none."""
-        return _moved(self._redo, self._undo, current)
+        if not self._redo:
+            return None
+        step = self._redo.pop()
+        self._push(Step(current, step.what))
+        return step
 
     def clear(self) -> None:
         self._undo.clear()
         self._redo.clear()
+        self._kept = 0
+
+    def _push(self, step: Step) -> None:
+        self._undo.append(step)
+        self._kept += _nodes(step)
 
 
-def _moved(source: list[Step], target: list[Step], current: Arm) -> Step | None:
-    if not source:
-        return None
-    step = source.pop()
-    target.append(Step(current, step.what))
-    return step
-
-
-def _nodes(steps: list[Step]) -> int:
+def _nodes(step: Step) -> int:
     # Every muscle's nodes: an arm of several muscles keeps each one's arrays.
-    return sum(muscle.node_count for step in steps for muscle in step.arm.muscles)
+    return sum(muscle.node_count for muscle in step.arm.muscles)

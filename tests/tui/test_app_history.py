@@ -1,5 +1,7 @@
 """Undo, redo and revert: every model edit can be taken back, and done again."""
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
@@ -104,6 +106,37 @@ def test_the_history_keeps_at_most_so_many_nodes_the_oldest_going_first(config):
         undone.append(step.what)
     assert len(undone) == KEPT_NODES // big.muscle.node_count
     assert undone[0] == f"edit {steps - 1}"
+
+
+class _CountedArm:
+    """An arm of ``nodes`` nodes that counts how often the history looks at its muscles."""
+
+    looked = 0
+
+    def __init__(self, nodes: int) -> None:
+        self._muscles = (SimpleNamespace(node_count=nodes),)
+
+    @property
+    def muscles(self):
+        _CountedArm.looked += 1
+        return self._muscles
+
+
+def test_an_edit_costs_the_same_however_long_the_history_is():
+    # Each edit looks at its own arm alone, not at every step kept (which made 8,000 edits
+    # quadratic), whether it is kept, undone, redone or dropped as the oldest.
+    history, looks = History(), []
+    for number in range(3 * KEPT_NODES // 1_000):
+        before = _CountedArm.looked
+        history.record(_CountedArm(1_000), f"edit {number}")
+        if number % 7 == 0:
+            history.redo(history.undo(_CountedArm(1_000)).arm)
+        looks.append(_CountedArm.looked - before)
+    assert max(looks) <= 4  # its record, an undo and a redo, the oldest step dropped
+    kept = 0
+    while history.undo(_CountedArm(1)) is not None:
+        kept += 1
+    assert kept == KEPT_NODES // 1_000
 
 
 @pytest.mark.parametrize("key", ["ctrl+z", "ctrl+y"])
