@@ -221,9 +221,13 @@ class BicepsApp(App[None]):
         super().panic(*renderables)
 
     def action_command_palette(self) -> None:
-        # Textual's palettes, guarded against its faults (tui/screens/once.py).
+        # Textual's palettes, guarded against its faults (tui/screens/once.py). With no id
+        # (Textual's own is "--command-palette"; is_open goes by the palette's class): a
+        # palette closed is removed only once the app has handled the keys queued behind
+        # it, and a ctrl+p among them would open one with the id of one still there,
+        # DuplicateIds.
         if self.use_command_palette and not CommandPalette.is_open(self):
-            self.push_screen(Palette(id="--command-palette"))
+            self.push_screen(Palette())
 
     def search_themes(self) -> None:
         self.push_screen(Palette(providers=[ThemeProvider], placeholder="Search for themes…"))

@@ -82,6 +82,21 @@ async def test_the_theme_palette_is_guarded_too(biceps):
         assert session.app.failure is None
 
 
+async def test_a_palette_opened_as_the_last_one_closes_is_a_palette_of_its_own(biceps):
+    # A storm's ctrl+p can be handled after a palette has closed and before it is removed:
+    # Textual's palette id, the same for both, ended the app (DuplicateIds).
+    async with biceps() as session:
+        app = session.app
+        await session.pilot.press("ctrl+p")
+        await session.settle()
+        closing = app.screen
+        closing.dismiss()
+        app.action_command_palette()
+        await session.settle()
+        assert isinstance(app.screen, Palette) and app.screen is not closing
+        assert app.failure is None
+
+
 def test_paging_a_palette_that_has_no_list_yet_does_nothing():
     Palette().action_page(1)  # not composed: no CommandList to page (NoMatches, unguarded)
 
