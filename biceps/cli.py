@@ -450,7 +450,7 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
         raise click.UsageError("give -o FILE.png, or one of --ansi, --kitty, --sixel and "
                                "--iterm to print to the terminal")
     if output is not None:
-        check_writable(output, ".png")
+        check_writable(output, ".png", read=config)
     scene = posed_scene(config, length, flexion, **overrides)
     if _own_process():
         from biceps.engine.coldstart import prepare_kernels
@@ -509,7 +509,7 @@ def animate(config: Path, output: Path, size: tuple[int, int], start: float | No
     from biceps.engine.animate import FlexCycle, check_cycle, render_cycle
     from biceps.engine.movie import check_animation, write_animation
 
-    check_animation(output, *size, fps)
+    check_animation(output, *size, fps, read=config)
     scene = posed_scene(config, None, None, **overrides)
     cycle = FlexCycle(*_or_the_whole_range(scene.arm, start, stop), frames, bounce=not loop)
     check_cycle(scene, cycle, *size)
@@ -554,7 +554,7 @@ def export_mesh(config: Path, output: Path, segments: int | None, length: float 
     from biceps.engine.config import load_config
     from biceps.engine.export import MESH_FORMATS, check_writable, write_mesh
 
-    check_writable(output, *MESH_FORMATS)
+    check_writable(output, *MESH_FORMATS, read=config)
     loaded = load_config(config)
     arm = posed(loaded.arm, length, flexion)
     render = loaded.render

@@ -13,7 +13,7 @@ from PIL import Image
 from biceps.engine.arm import Arm
 from biceps.engine.config import rgb
 from biceps.engine.errors import FileError, shown
-from biceps.engine.files import check_name, write_atomically
+from biceps.engine.files import check_name, same_file, write_atomically
 from biceps.engine.anatomy import arm_parts
 from biceps.engine.names import printable
 from biceps.engine.settings import RenderSettings
@@ -47,20 +47,27 @@ def parse_size(text: str) -> tuple[int, int]:
     return width, height
 
 
-def check_writable(path: Path, *suffixes: str) -> None:
-    """Raise :class:`FileError` now, before any work, if ``path`` cannot be the output."""
+def check_writable(path: Path, *suffixes: str, read: Path | None = None) -> None:
+    """Raise :class:`FileError` now, before any work, if ``path`` cannot be the output; or
+    if it is the file ``read``, the configuration the output is made from."""
     name = printable(path)
     if path.suffix.lower() not in suffixes:
         allowed = ", ".join(suffixes)
         raise FileError(f"{name}: the name must end in {allowed}")
     check_name(path)
-    if path.is_dir():
-        raise FileError(f"{name}: is a directory")
     parent = path.parent
-    if not parent.is_dir():
-        raise FileError(f"{name}: there is no directory {printable(parent)}")
+    try:
+        if path.is_dir():
+            raise FileError(f"{name}: is a directory")
+        if not parent.is_dir():
+            raise FileError(f"{name}: there is no directory {printable(parent)}")
+    except OSError as error:  # a folder that cannot be searched, a loop of links
+        raise FileError(f"{name}: {error.strerror}") from None
     if not os.access(parent, os.W_OK):
         raise FileError(f"{name}: the directory {printable(parent)} is not writable")
+    if read is not None and same_file(path, read):
+        raise FileError(f"{name}: is the configuration it is made from; writing it would "
+                        "replace the model: give another name")
 
 
 def png_bytes(frame: np.ndarray) -> bytes:

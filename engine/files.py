@@ -74,20 +74,40 @@ def _size(count: int) -> str:
 
 
 def check_name(path: Path) -> None:
-    """Raise :class:`FileError` if ``path``'s last part is longer than its file system
-    allows (most allow 255 bytes), which every later step would fail on with ENAMETOOLONG."""
-    longest = _longest_name(path.parent)
-    length = len(os.fsencode(path.name))
+    """Raise :class:`FileError` if a part of ``path`` (the file's name or a folder's) is
+    longer than its file system allows (most allow 255 bytes), or the whole path is longer
+    than the system takes one (4,095 bytes on Linux): every later step would fail on it with
+    ENAMETOOLONG."""
+    for depth, part in enumerate(path.parts):
+        length = len(os.fsencode(part))
+        longest = _longest_name(Path(*path.parts[:depth]) if depth else Path("."))
+        if length > longest:
+            what = "the name" if depth == len(path.parts) - 1 else \
+                f"the folder name {printable(_shortened(part))}"
+            raise FileError(f"{printable(path)}: {what} is {length:,} bytes long; a file name "
+                            f"here has at most {longest}")
+    length, longest = len(os.fsencode(path)), _longest_path()
     if length > longest:
-        raise FileError(f"{printable(path)}: the name is {length} bytes long; a file name "
-                        f"here has at most {longest}")
+        raise FileError(f"{printable(path)}: the path is {length:,} bytes long; a path has at "
+                        f"most {longest:,}")
 
 
 def _longest_name(folder: Path) -> int:
     try:
         return os.pathconf(folder, "PC_NAME_MAX")
-    except (OSError, ValueError):
+    except (OSError, ValueError):  # no such folder (yet), or no such limit
         return 255
+
+
+def _longest_path() -> int:
+    try:
+        return os.pathconf("/", "PC_PATH_MAX") - 1  # the limit counts the closing NUL
+    except (OSError, ValueError):
+        return 4095
+
+
+def _shortened(name: str) -> str:
+    return name if len(name) <= 24 else f"{name[:20]}..."
 
 
 def same_file(path: str | os.PathLike, other: str | os.PathLike) -> bool:

@@ -39,10 +39,11 @@ Progress = Callable[[int, int], None]
 """Told ``(done, total)`` after each step of a long job: a frame rendered or encoded."""
 
 
-def check_animation(path: Path, width: int, height: int, fps: float) -> None:
+def check_animation(path: Path, width: int, height: int, fps: float,
+                    read: Path | None = None) -> None:
     """Raise :class:`BicepsError` now, before any rendering, if ``path`` cannot be written
-    at this size and frame rate."""
-    check_writable(path, *ANIMATION_FORMATS)
+    at this size and frame rate, or is ``read``, the configuration it is made from."""
+    check_writable(path, *ANIMATION_FORMATS, read=read)
     low, high = FPS_RANGE
     if not low <= fps <= high:
         raise BicepsError(f"the frame rate must be {low:g} to {high:g} a second, not {fps:g}")

@@ -563,7 +563,8 @@ class BicepsApp(App[None]):
                 Field("Size in pixels", self._export_size, parse_size),
             ]
             prompt = Prompt("Export a PNG", fields, accept="Export",
-                            check=lambda path, size: check_writable(path, ".png"))
+                            check=lambda path, size: check_writable(
+                                path, ".png", read=self.config.path))
             answer = await self.push_screen_wait(prompt)
             if answer is None:
                 return
@@ -605,11 +606,11 @@ class BicepsApp(App[None]):
         default = Path(f"{self.config.path.stem}-flex.gif")
         while True:
             answer = await self.push_screen_wait(
-                RecordPrompt(self.scene, default, self._last_recording))
+                RecordPrompt(self.scene, default, self._last_recording, read=self.config.path))
             if answer is None:
                 return
             recording = self._last_recording = as_recording(*answer)  # if asked again
-            if not recording.path.exists() or await self._confirm_replace(recording.path):
+            if not os.path.exists(recording.path) or await self._confirm_replace(recording.path):
                 break
         recorder.record(self.scene, recording)
 

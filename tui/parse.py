@@ -6,6 +6,7 @@ Picture sizes are read by :func:`engine.export.parse_size`, shared with the comm
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 
 from biceps.engine.errors import FileError, shown
@@ -41,6 +42,6 @@ def parse_path(text: str) -> Path:
         check_name(path)
     except FileError as error:
         raise ValueError(str(error)) from None
-    if path.is_dir():
+    if os.path.isdir(path):  # False, not OSError, for a folder that cannot be searched
         raise ValueError(f"{printable(path)} is a directory: give a file name")
     return path

@@ -339,6 +339,33 @@ def test_an_output_name_too_long_is_refused_before_any_work(tmp_path, command, s
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.parametrize("command, suffix", [("snapshot", ".png"), ("export-mesh", ".obj"),
+                                             ("animate", ".gif")])
+def test_an_output_in_a_folder_named_too_long_is_refused_before_any_work(tmp_path, command,
+                                                                         suffix):
+    result = run(command, DEFAULT_CONFIG, "-o", tmp_path / ("x" * 256) / f"arm{suffix}")
+    assert result.exit_code == 2
+    assert f"the folder name {'x' * 20}... is 256 bytes long; a file name here has at most " \
+        "255" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("command, suffix", [("snapshot", ".png"), ("export-mesh", ".obj"),
+                                             ("animate", ".gif")])
+def test_an_output_that_is_the_configuration_itself_is_refused(tmp_path, command, suffix):
+    config = tmp_path / f"arm{suffix}"  # a configuration may have any name
+    config.write_bytes(DEFAULT_CONFIG.read_bytes())
+    link = tmp_path / f"link{suffix}"
+    link.symlink_to(config)
+    for output in (config, link):
+        result = run(command, config, "-o", output, "--size", "64x48") if command != \
+            "export-mesh" else run(command, config, "-o", output)
+        assert result.exit_code == 2
+        assert f"{output}: is the configuration it is made from" in result.stderr
+        assert config.read_bytes() == DEFAULT_CONFIG.read_bytes()
+
+
 def test_info_json_is_strict_json_at_the_bounds(tmp_path):
     path = tmp_path / "extreme.toml"
     path.write_text("[muscle]\nlength = 33.0\nnodes = [[1e-6, 0.0], [1e4, 1e4], [1e-6, 0.0]]\n")

@@ -2,6 +2,7 @@
 someone else wrote into it since), and reading refuses what is not a regular file."""
 
 import os
+import re
 import stat
 from pathlib import Path
 
@@ -99,6 +100,18 @@ def test_a_name_too_long_is_refused_before_anything_is_written(tmp_path):
                                         "most 255"):
         write_atomically(tmp_path / ("x" * 300), b"x")
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("parts, message", [
+    (["x" * 256, "f"], "the folder name xxxxxxxxxxxxxxxxxxxx... is 256 bytes long; a file name "
+                       "here has at most 255"),
+    (["ab"] * 1400, "the path is 4,"),
+])
+def test_a_folder_named_too_long_or_a_path_too_long_is_refused(tmp_path, parts, message):
+    with pytest.raises(FileError, match=re.escape(message)):
+        write_atomically(tmp_path.joinpath(*parts), b"x")
+    with pytest.raises(FileError, match=re.escape(message)):
+        read_regular_file(tmp_path.joinpath(*parts), 1000)
 
 
 @pytest.mark.parametrize("size", [0, 10, 1000])

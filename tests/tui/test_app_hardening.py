@@ -188,17 +188,37 @@ async def test_a_pasted_escape_sequence_is_not_taken_into_a_dialog(biceps):
         assert box.value.endswith("fine.png")
 
 
-@pytest.mark.parametrize("key, field", [("e", 0), ("ctrl+d", 0), ("ctrl+o", 0)])
-async def test_a_file_name_too_long_is_refused_in_every_dialog(biceps, tmp_path, key, field):
+@pytest.mark.parametrize("name, message", [
+    ("x" * 300 + ".png", "the name is 304 bytes long; a file name here has at most 255"),
+    ("x" * 256 + "/arm.png", "the folder name xxxxxxxxxxxxxxxxxxxx... is 256 bytes long"),
+    ("ab/" * 1400 + "arm.png", "the path is 4,"),
+], ids=["name", "folder", "path"])
+@pytest.mark.parametrize("key", ["e", "ctrl+d", "ctrl+o", "v"])
+async def test_a_file_name_too_long_is_refused_in_every_dialog(biceps, tmp_path, key, name,
+                                                                message):
     async with biceps() as session:
         await session.pilot.press(key)
-        session.app.screen.query(Input)[field].value = str(tmp_path / ("x" * 300 + ".png"))
+        session.app.screen.query(Input)[0].value = str(tmp_path / name)
         await session.pilot.press("enter")
         await session.settle()
         assert isinstance(session.app.screen, Prompt)  # still open, the name there to fix
-        assert "the name is 304 bytes long; a file name here has at most 255" in \
-            session.warnings[-1]
+        assert message in session.warnings[-1]
         assert session.app.failure is None
+
+
+@pytest.mark.parametrize("key, suffix", [("e", ".png"), ("v", ".gif")])
+async def test_an_export_or_a_recording_over_the_model_s_own_file_is_refused(biceps, tmp_path,
+                                                                             key, suffix):
+    config = tmp_path / f"arm{suffix}"  # a configuration may have any name
+    shutil.copy(DEFAULT_CONFIG, config)
+    async with biceps(on=load_config(config)) as session:
+        await session.pilot.press(key)
+        session.app.screen.query(Input)[0].value = str(config)
+        await session.pilot.press("enter")
+        await session.settle()
+        assert isinstance(session.app.screen, Prompt)
+        assert f"{config}: is the configuration it is made from" in session.warnings[-1]
+    assert config.read_bytes() == DEFAULT_CONFIG.read_bytes()
 
 
 def _pipe(folder: Path) -> Path:

@@ -65,9 +65,10 @@ def as_recording(path: Path, size: tuple[int, int], start: float, end: float, fr
 class RecordPrompt(Prompt):
     """Asks where and how to record the flex cycle of ``scene``; dismisses with the values
     for :func:`as_recording`, or None when cancelled. ``last`` fills the fields as they were
-    the last time."""
+    the last time; ``read`` is the model's file, which a recording may not replace."""
 
-    def __init__(self, scene: Scene, default_path: Path, last: Recording | None = None) -> None:
+    def __init__(self, scene: Scene, default_path: Path, last: Recording | None = None,
+                 read: Path | None = None) -> None:
         least, most = flexion_range(scene.arm)
         if last is None:
             last = Recording(default_path, 640, 360, FlexCycle(least, most, 60), 25.0)
@@ -81,7 +82,7 @@ class RecordPrompt(Prompt):
             Field("Frames a second", f"{last.fps:g}", parse_number),
             Field("Bounce or loop", "bounce" if cycle.bounce else "loop", parse_motion),
         ]
-        self._scene = scene
+        self._scene, self._read = scene, read
         super().__init__("Record the flex cycle", fields, accept="Record", check=self._check)
 
     def compose(self) -> ComposeResult:
@@ -100,5 +101,6 @@ class RecordPrompt(Prompt):
 
     def _check(self, *values) -> None:
         recording = as_recording(*values)
-        check_animation(recording.path, recording.width, recording.height, recording.fps)
+        check_animation(recording.path, recording.width, recording.height, recording.fps,
+                        self._read)
         check_cycle(self._scene, recording.cycle, recording.width, recording.height)
