@@ -220,6 +220,13 @@ class BicepsApp(App[None]):
             self.failure = "an error reading the terminal"
         super().panic(*renderables)
 
+    async def on_event(self, event: events.Event) -> None:
+        # Keys and the mouse still queued as the app closes come after its screens have
+        # gone, and Textual, handing them to the screen in front, raised ScreenStackError.
+        if isinstance(event, (events.InputEvent, events.Paste)) and not self.screen_stack:
+            return
+        await super().on_event(event)
+
     def action_command_palette(self) -> None:
         # Textual's palettes, guarded against its faults (tui/screens/once.py). With no id
         # (Textual's own is "--command-palette"; is_open goes by the palette's class): a

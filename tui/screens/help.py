@@ -37,5 +37,8 @@ class HelpScreen(Dialog[None]):
         # Rich's magenta: a terminal's magenta may be the muscle's red.
         accent = self.app.current_theme.accent or self.app.current_theme.primary
         headings = Theme({f"markdown.h{level}": f"bold {accent}" for level in (1, 2, 3)})
+        logs = self.query(RichLog)
+        if not logs:  # closed before it was laid out: ? then escape, at once
+            return
         with self.app.console.use_theme(headings):
-            self.query_one(RichLog).write(Markdown(HELP))
+            logs.first().write(Markdown(HELP))

@@ -19,10 +19,13 @@ from __future__ import annotations
 
 from typing import TypeVar
 
-from textual import on
+from textual import on, work
 from textual.await_complete import AwaitComplete
 from textual.binding import Binding
 from textual.command import CommandList, CommandPalette
+from textual.css.query import NoMatches
+from textual.errors import NoWidget
+from textual.events import Click
 from textual.screen import ModalScreen, Screen
 from textual.widgets import Input, OptionList
 
@@ -71,6 +74,26 @@ class Palette(CommandPalette, DismissedOnce[None]):
         if self._dismissed:
             event.prevent_default()
             event.stop()
+
+    @work(exclusive=True, group=CommandPalette._GATHER_COMMANDS_GROUP)
+    async def _gather_commands(self, search_value: str) -> None:
+        # Textual's search, started as the palette mounts and at each change of its input,
+        # runs when the app gets to it: in a burst of keys (ctrl+p escape), or as the app
+        # closes, the palette's list may be gone by then, NoMatches. Textual is pinned to 8.x.
+        try:
+            await CommandPalette._gather_commands.__wrapped__(self, search_value)
+        except NoMatches:
+            if self.query(CommandList):  # the list is there: a fault of another kind
+                raise
+
+    def _on_click(self, event: Click) -> None:
+        # A click outside the palette closes it (Textual's handler, next): it looks for
+        # what was clicked, and in a window shrunk since (to 1x3, say) there is nothing
+        # there, NoWidget. Such a click does nothing.
+        try:
+            self.get_widget_at(event.screen_x, event.screen_y)
+        except NoWidget:
+            event.prevent_default()
 
     def action_page(self, direction: int) -> None:
         lists = self.query(CommandList)  # none yet, or none left as the palette closes
