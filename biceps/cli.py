@@ -20,6 +20,7 @@ import io
 import json
 import math
 import os
+import signal
 import sys
 from contextlib import contextmanager
 from pathlib import Path
@@ -108,18 +109,127 @@ def _not_a_config(word: str) -> bool:
         return False
 
 
+INTERRUPTED = 130
+"""The exit status after ctrl+c: 128 and SIGINT's number, as a shell reports a program it
+interrupted."""
+
+READER_GONE = 141
+"""The exit status when the program reading stdout stopped reading (``| head -1``): 128 and
+SIGPIPE's number, as a shell reports any program that signal ends."""
+
+
 def _refusals_exit_2(command: Callable) -> Callable:
-    """Turn a :class:`BicepsError` into its message on stderr and exit code 2."""
+    """Turn a :class:`BicepsError` into its message on stderr and exit code 2, and ctrl+c
+    into a line saying so and exit code 130 (files are written whole or not at all)."""
 
     @functools.wraps(command)
     def run(*args: Any, **kwargs: Any) -> Any:
         try:
             return command(*args, **kwargs)
         except BicepsError as error:
-            click.echo(f"biceps: {error}", err=True)
+            _say(f"biceps: {error}")
             sys.exit(USAGE_ERROR)
+        except KeyboardInterrupt:
+            if _own_process():  # a second ctrl+c must not cut this short
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+            _say("\nbiceps: interrupted; no file was written")
+            sys.exit(INTERRUPTED)
 
     return run
+
+
+def _say(line: str) -> None:
+    """``line`` on stderr, if stderr can take it: a message must not become an error."""
+    try:
+        click.echo(line, err=True)
+    except (OSError, ValueError):  # stderr closed or full: the exit status says it
+        pass
+
+
+def _print(text: str) -> None:
+    """``text`` and a newline on stdout, all of it (see :func:`_stdout`)."""
+    with _stdout() as stream:
+        stream.write(text + "\n")
+
+
+@contextmanager
+def _stdout(half_blocks: bool = False) -> Iterator[Any]:
+    """stdout, for output to be written to it whole, flushed at the end; ``half_blocks``
+    for a picture made of them.
+
+    A write that fails is an error, never a silent exit 0: stdout closed (``>&-``), or one
+    that cannot take the half blocks (``PYTHONIOENCODING=ascii``), is refused (before any
+    work, where the command asks :func:`_writable_stdout` first); a full device is said as
+    it fails. A reader that stopped reading (``| head -c1``) ends the command quietly, with
+    :data:`READER_GONE`.
+    """
+    stream = _writable_stdout(half_blocks)
+    sys.stdout = _InPieces(stream)  # what rich and the printed pictures write to, too
+    try:
+        yield sys.stdout
+        stream.flush()
+    except OSError as error:
+        _detach(stream)  # what is still buffered must not fail again as Python exits
+        if isinstance(error, BrokenPipeError):
+            sys.exit(READER_GONE)
+        raise BicepsError(f"cannot write to stdout: {error.strerror}") from None
+    except SystemExit as exit:
+        if isinstance(exit.__context__, BrokenPipeError):  # rich's own way out (status 1)
+            sys.exit(READER_GONE)
+        raise
+    finally:
+        sys.stdout = stream
+
+
+class _InPieces:
+    """A text stream written to in pieces of at most :data:`PIECE` characters.
+
+    Given more than its buffer at once, CPython's buffered writer loses the error of a pipe
+    closed part way: the kernel takes what fits and says so, and the rest is dropped with
+    no BrokenPipeError (4 MB of sweep into ``head -c1`` ended with status 0). Piece by
+    piece, the write after the reader has gone raises it."""
+
+    def __init__(self, stream: Any) -> None:
+        self._stream = stream
+
+    def write(self, text: str) -> int:
+        for start in range(0, len(text), PIECE):
+            self._stream.write(text[start:start + PIECE])
+        return len(text)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+
+PIECE = io.DEFAULT_BUFFER_SIZE
+
+
+def _writable_stdout(half_blocks: bool = False) -> Any:
+    """stdout, unless it is closed or, for a picture of ``half_blocks``, cannot take them
+    (a text's other characters it cannot take are written as escapes: see :func:`run`);
+    :class:`BicepsError` then."""
+    stream = sys.stdout
+    if stream is None:
+        raise BicepsError("stdout is closed, and this command writes there: give it a file "
+                          "(> out.txt) or a pipe")
+    if half_blocks:
+        try:
+            "\u2584".encode(stream.encoding or "ascii")
+        except (UnicodeEncodeError, LookupError):
+            raise BicepsError(f"stdout takes only {stream.encoding}, and the picture is made "
+                              "of half blocks (U+2584): set PYTHONIOENCODING=utf-8, or write "
+                              "a PNG with -o") from None
+    return stream
+
+
+def _detach(stream: Any) -> None:
+    """Point ``stream``'s descriptor at /dev/null."""
+    try:
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, stream.fileno())
+        os.close(null)
+    except (OSError, ValueError, io.UnsupportedOperation):  # not a file (a test's buffer)
+        pass
 
 
 # Plain paths: whether each is a file that can be read, or written, is for the engine to
@@ -165,7 +275,7 @@ def main() -> None:
     try:
         drawing_threads(os.environ)
     except BicepsError as error:
-        click.echo(f"biceps: {error}", err=True)
+        _say(f"biceps: {error}")
         sys.exit(USAGE_ERROR)
 
 
@@ -207,8 +317,11 @@ def app(config: Path, colors: str, fps: float | None, graphics: str | None,
     """Open the terminal app on CONFIG (default: configs/biceps.toml)."""
     from biceps.engine.config import load_config
 
-    loaded = load_config(config)  # fail here, before the terminal switches screens
     compile_aside = _own_process()
+    if compile_aside:
+        _keys_are_keys()
+    loaded = load_config(config)  # fail here, before the terminal switches screens
+    _check_terminal()
     if compile_aside:  # the longest compilation of a first run starts before Textual loads
         from biceps.engine.coldstart import compile_rasterizer_aside
 
@@ -221,16 +334,42 @@ def app(config: Path, colors: str, fps: float | None, graphics: str | None,
         sys.exit(status)
 
 
+def _keys_are_keys() -> None:
+    """Ignore SIGQUIT and SIGTSTP, which ctrl+\\ and ctrl+z raise while the terminal is in its
+    own mode: before the app has taken it (loading a file, compiling on a first run), and
+    between an app that ended on an error and its rescue.
+
+    While the app runs Textual turns those signals off, and the keys are keys: ctrl+z is
+    undo, ctrl+\\ nothing. Typed a moment earlier, in a burst, they dumped core or stopped
+    the app half started. Textual puts its own SIGTSTP handler back when it starts (a
+    suspend it undoes on SIGCONT, for kill -TSTP). ctrl+c before the app is up still
+    ends it, quietly (exit status 130).
+    """
+    signal.signal(signal.SIGQUIT, signal.SIG_IGN)
+    signal.signal(signal.SIGTSTP, signal.SIG_IGN)
+
+
+def _check_terminal() -> None:
+    """Refuse to start the app without a terminal to read keys from and draw on (Textual
+    reads stdin and draws on stderr): with none it would write its screen into a file or
+    a pipe, and wait for keys that never come."""
+    for number, name in ((0, "stdin"), (2, "stderr")):
+        if not os.isatty(number):
+            raise BicepsError(f"the app needs a terminal, and its {name} is not one; for a "
+                              "picture without a terminal: biceps snapshot -o arm.png")
+
+
 @main.command(short_help="Say what this terminal can show, and what the app would use.")
 @click.option("--graphics", type=click.Choice(GRAPHICS), default="auto", show_default=True,
               help="The choice to explain, as the app would take it.")
+@_refusals_exit_2
 def doctor(graphics: str) -> None:
     """Ask this terminal what it can show, and say what the app would use and why."""
     from biceps.tui import detect
 
     answers, place = detect.ask(), detect.Place.here()
-    click.echo(f"biceps doctor: --graphics {graphics}")
-    click.echo(detect.report(graphics, answers, place, detect.choose(graphics, answers, place)))
+    _print(f"biceps doctor: --graphics {graphics}\n"
+           + detect.report(graphics, answers, place, detect.choose(graphics, answers, place)))
 
 
 @main.command()
@@ -244,15 +383,16 @@ def info(config: Path, length: float | None, flexion: float | None, as_json: boo
     With several muscles, a line for each: length, volume, its error, largest radius."""
     from biceps.engine.config import load_config
 
+    _writable_stdout()  # before any work
     arm = posed(load_config(config).arm, length, flexion)
     facts = describe(arm)
     if as_json:
         # allow_nan=False: NaN and Infinity are not JSON (the engine's bounds keep them out).
-        click.echo(json.dumps(facts, indent=2, allow_nan=False))
+        _print(json.dumps(facts, indent=2, allow_nan=False))
         return
     low, high = facts["length_range_cm"]
     radii = " ".join(f"{r:.3f}" for r in facts["radii_cm"])
-    click.echo(
+    lines = [
         f"{printable(config)}\n"
         f"  length         {facts['length_cm']:.3f} cm (allowed {low:.2f} to {high:.2f})\n"
         f"  elbow flexion  {facts['flexion_deg']:.2f} degrees, "
@@ -262,16 +402,17 @@ def info(config: Path, length: float | None, flexion: float | None, as_json: boo
         f"  max radius     {facts['max_radius_cm']:.3f} cm, girth {facts['girth_cm']:.3f} cm\n"
         f"  nodes          {facts['nodes']}\n"
         f"  radii (cm)     {radii}"
-    )
+    ]
     others = facts["muscles"][1:]
     if others:
         width = max(len(each["name"]) for each in facts["muscles"])
-        click.echo("  muscles        length, volume (relative error), largest radius; the first "
-                   "drives the elbow")
+        lines.append("  muscles        length, volume (relative error), largest radius; the "
+                     "first drives the elbow")
         for each in facts["muscles"]:
-            click.echo(f"    {each['name']:<{width}}  {each['length_cm']:7.3f} cm "
-                       f"{each['volume_cm3']:9.4f} cm^3 ({each['volume_relative_error']:.1e}) "
-                       f"{each['max_radius_cm']:.3f} cm")
+            lines.append(f"    {each['name']:<{width}}  {each['length_cm']:7.3f} cm "
+                         f"{each['volume_cm3']:9.4f} cm^3 ({each['volume_relative_error']:.1e}) "
+                         f"{each['max_radius_cm']:.3f} cm")
+    _print("\n".join(lines))
 
 
 @main.command(short_help="One row per elbow angle: length, moment arm, girth, radii.")
@@ -291,11 +432,14 @@ def sweep(config: Path, start: float | None, stop: float | None, step: float, fo
     from biceps.engine.config import load_config
     from biceps.engine.sweep import angles, sweep as sweep_arm
 
+    _writable_stdout()  # before any work
     arm = load_config(config).arm
     start, stop = _or_the_whole_range(arm, start, stop)
-    records = [row.record() for row in sweep_arm(arm, angles(start, stop, step))]
+    flexions = angles(start, stop, step)
+    with _progress_bar("sweeping", len(flexions), SLOW_SWEEP) as progress:
+        records = [row.record() for row in sweep_arm(arm, flexions, progress)]
     if form == "json":
-        click.echo(json.dumps(records, indent=2, allow_nan=False))
+        _print(json.dumps(records, indent=2, allow_nan=False))
         return
     radii = len(records[0]["radii_cm"])
     columns = [name for name in records[0] if name != "radii_cm"]
@@ -305,7 +449,7 @@ def sweep(config: Path, start: float | None, stop: float | None, step: float, fo
     writer.writerow([*columns, *(f"radius_{i}_cm" for i in range(1, radii + 1))])
     for record in records:
         writer.writerow([*(record[name] for name in columns), *record["radii_cm"]])
-    click.echo(table.getvalue(), nl=False)
+    _print(table.getvalue().removesuffix("\n"))
 
 
 def _or_the_whole_range(arm: Arm, start: float | None, stop: float | None) -> tuple[float, float]:
@@ -451,6 +595,8 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
                                "--iterm to print to the terminal")
     if output is not None:
         check_writable(output, ".png", read=config)
+    else:
+        _writable_stdout(half_blocks=printed == "ansi")  # before any work
     scene = posed_scene(config, length, flexion, **overrides)
     if _own_process():
         from biceps.engine.coldstart import prepare_kernels
@@ -462,14 +608,16 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
         from biceps.engine.config import rgb
         from biceps.tui.ansi import print_picture  # rich, only for this mode
 
-        print_picture(lambda width, height: SceneRenderer().render(scene, width, height),
-                      rgb(scene.render.background), size, colors)
+        with _stdout(half_blocks=True):
+            print_picture(lambda width, height: SceneRenderer().render(scene, width, height),
+                          rgb(scene.render.background), size, colors)
         return
     if printed is not None:
         from biceps.tui.printed import print_image
 
-        print_image(printed, lambda width, height: SceneRenderer().render(scene, width, height),
-                    size)
+        with _stdout():
+            print_image(printed,
+                        lambda width, height: SceneRenderer().render(scene, width, height), size)
         return
     size = size or PNG_SIZE
     try:
@@ -529,11 +677,16 @@ def animate(config: Path, output: Path, size: tuple[int, int], start: float | No
                "a second)", err=True)
 
 
+SLOW_SWEEP = 2_000
+"""Rows from which ``sweep`` shows its progress (a few seconds' work)."""
+
+
 @contextmanager
-def _progress_bar(label: str, total: int) -> Iterator[Progress]:
+def _progress_bar(label: str, total: int, at_least: int = 0) -> Iterator[Progress]:
     """A progress bar on stderr when it is a terminal, none when it is not (piped, or a
-    log): the context gives the function to tell ``(done, total)``."""
-    if not sys.stderr.isatty():
+    log) or the job is shorter than ``at_least`` steps: the context gives the function to
+    tell ``(done, total)``."""
+    if total < at_least or sys.stderr is None or not sys.stderr.isatty():
         yield lambda done, total: None
         return
     with click.progressbar(length=total, label=label, file=sys.stderr, show_pos=True) as bar:
@@ -562,6 +715,23 @@ def export_mesh(config: Path, output: Path, segments: int | None, length: float 
     click.echo(f"wrote {printable(output)}", err=True)
 
 
+def _hold_standard_numbers() -> None:
+    """Open /dev/null on stdin, stdout and stderr where they are closed (``>&-``).
+
+    Python then leaves sys.stdout None (which :func:`_stdout` refuses), but the number is
+    free, and the next file opened takes it: a PNG being written would get 1, and anything
+    written to stdout below Python would land in it.
+    """
+    for number in (0, 1, 2):
+        try:
+            os.fstat(number)
+        except OSError:
+            held = os.open(os.devnull, os.O_RDWR)
+            if held != number:  # a lower one was free too, and is held the next time round
+                os.dup2(held, number)
+                os.close(held)
+
+
 OWN_PROCESS = "the biceps command's own process"
 """The context's ``obj`` when the process is the command's own and ends with it (see `run`),
 rather than a caller's (a test's, say): only then may the command fork it or freeze its
@@ -574,6 +744,11 @@ def _own_process() -> bool:
 
 def run() -> None:
     """The ``biceps`` command: :func:`main`, then a quicker exit."""
+    _hold_standard_numbers()
+    if sys.stdout is not None:
+        # A name a stdout of another encoding cannot take (PYTHONIOENCODING=ascii) is
+        # written as escapes, \xe9, as stderr writes it, rather than ending in an error.
+        sys.stdout.reconfigure(errors="backslashreplace")
     try:
         main(obj=OWN_PROCESS)
     finally:

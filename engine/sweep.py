@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
@@ -86,13 +86,17 @@ def angles(start: float, stop: float, step: float) -> list[float]:
     if not (math.isfinite(step) and step > 0):
         raise RefusedChange(f"the step must be above 0 degrees, got {step:g}")
     span = abs(stop - start)
-    # A hair of tolerance, so that 0 to 1 by 0.1 ends on 1 despite 10 * 0.1 rounding.
-    count = math.floor(span / step * (1 + 1e-12)) + 1
-    if count > MOST_ANGLES:
+    # A hair of tolerance, so that 0 to 1 by 0.1 ends on 1 despite 10 * 0.1 rounding. A
+    # step of 1e-308 makes a count too large for a float (inf): compared as one, not made
+    # an int first.
+    steps = span / step * (1 + 1e-12)
+    if not steps < MOST_ANGLES:
+        rows = f"{math.floor(steps) + 1:,}" if steps < 1e9 else "more than a billion"
         raise RefusedChange(
-            f"a step of {step:g} degrees from {start:g} to {stop:g} makes {count} rows; "
-            f"at most {MOST_ANGLES} are allowed, so take a larger step"
+            f"a step of {step:g} degrees from {start:g} to {stop:g} makes {rows} rows; "
+            f"at most {MOST_ANGLES:,} are allowed, so take a larger step"
         )
+    count = math.floor(steps) + 1
     direction = 1.0 if stop >= start else -1.0
     out = [start + direction * k * step for k in range(count)]
     if abs(out[-1] - stop) <= 1e-9 * step:
@@ -100,8 +104,16 @@ def angles(start: float, stop: float, step: float) -> list[float]:
     return out
 
 
-def sweep(arm: Arm, flexions: list[float]) -> list[Row]:
+def sweep(arm: Arm, flexions: list[float],
+          progress: Callable[[int, int], None] | None = None) -> list[Row]:
     """The arm's numbers at each of ``flexions`` (degrees); raises :class:`RefusedChange`,
-    before any row is made, if one is outside what the arm allows."""
-    arms = [arm.at_flexion(flexion) for flexion in flexions]
+    before any row is made, if one is outside what the arm allows. ``progress`` is told
+    ``(done, total)`` as the arm is put at each angle."""
+    for flexion in flexions[:1] + flexions[-1:]:  # an end out of reach, refused at once
+        arm.at_flexion(flexion)
+    arms = []
+    for flexion in flexions:
+        arms.append(arm.at_flexion(flexion))
+        if progress is not None and len(arms) % 100 == 0:
+            progress(len(arms), len(flexions))
     return [Row.of(posed, flexion) for posed, flexion in zip(arms, flexions)]

@@ -90,6 +90,7 @@ def started(monkeypatch):
     monkeypatch.setattr(detect, "ask", ask)
     monkeypatch.setattr(detect.Place, "here", classmethod(lambda cls: detect.Place()))
     monkeypatch.setattr("biceps.tui.app.BicepsApp.run", run_app)
+    monkeypatch.setattr("biceps.cli._check_terminal", lambda: None)  # the runner has none
     return seen
 
 

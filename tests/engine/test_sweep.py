@@ -73,7 +73,8 @@ def test_angles_walk_down_when_the_last_is_below_the_first():
     (0.0, "the step must be above 0 degrees"),
     (-5.0, "the step must be above 0 degrees"),
     (float("nan"), "the step must be above 0 degrees"),
-    (1e-6, f"at most {MOST_ANGLES} are allowed"),
+    (1e-6, f"makes 130,000,001 rows; at most {MOST_ANGLES:,} are allowed"),
+    (1e-308, "makes more than a billion rows"),  # a count beyond any float: OverflowError
 ])
 def test_angles_refuse_a_step_that_is_no_step_or_far_too_fine(step, message):
     with pytest.raises(RefusedChange, match=message):

@@ -328,6 +328,7 @@ def test_the_app_takes_a_frame_rate_cap_up_to_textual_s_limit(config, fps, cap):
 def test_the_command_line_passes_the_cap_to_the_app(monkeypatch):
     runs = []
     monkeypatch.setattr("biceps.tui.app.run_app", lambda config, **options: runs.append(options))
+    monkeypatch.setattr("biceps.cli._check_terminal", lambda: None)  # the runner has none
     result = CliRunner().invoke(main, ["app", "--fps", "30"])
     assert result.exit_code == 0, result.output
     # Not the command's own process (a test's): nothing is forked.
