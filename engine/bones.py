@@ -32,6 +32,9 @@ ARM26_UPPER_ARM = 29.1
 ARM26_FOREARM = 25.4
 HEAD_RADIUS = 2.2  # arm26's BIClonghh wrapping ellipsoid: 2.5 by 2 by 2 cm
 STEP = 0.6  # cm between the profile's samples along a part's axis
+MOST_SAMPLES = 32
+"""Samples between two knots at most: an adult's bones take up to 17 at STEP; a bone scaled
+to kilometres takes no more (at 0.6 cm each, a humerus of 1e6 cm took millions, 5 GB)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,20 +61,24 @@ def profile(knots, ends: tuple[float, float], step: float = STEP) -> np.ndarray:
     the axis, radius), j >= 2, increasing distances.
 
     Between knots the radius follows a Catmull-Rom spline, sampled every ``step`` cm or
-    closer; each end closes with a quarter ellipse as long as that end's entry of ``ends``
-    (the end's radius: a hemisphere; less: a flatter end).
+    closer (but :data:`MOST_SAMPLES` times at most); each end closes with a quarter ellipse
+    as long as that end's entry of ``ends`` (the end's radius: a hemisphere; less: a flatter
+    end).
     """
     knots = np.asarray(knots, dtype=np.float64)
     x, r = knots.T
     slopes = np.gradient(r, x)  # Catmull-Rom's tangents, for knots unevenly spaced
     samples = [knots[:1]]
     for i in range(len(knots) - 1):
-        count = max(1, int(np.ceil((x[i + 1] - x[i]) / step)))
+        count = min(max(1, int(np.ceil((x[i + 1] - x[i]) / step))), MOST_SAMPLES)
         t = np.linspace(0.0, 1.0, count + 1)[1:]
         h = x[i + 1] - x[i]
         radius = ((2 * t**3 - 3 * t**2 + 1) * r[i] + (t**3 - 2 * t**2 + t) * h * slopes[i]
                   + (-2 * t**3 + 3 * t**2) * r[i + 1] + (t**3 - t**2) * h * slopes[i + 1])
-        samples.append(np.column_stack([x[i] + t * h, radius]))
+        # The spline between knots of very different radii (the ulna's, sized with both
+        # bones, when one is five times the other) can dip below zero: a part is never
+        # thinner than half its thinnest knot (an adult's bones never come near).
+        samples.append(np.column_stack([x[i] + t * h, np.maximum(radius, 0.5 * r.min())]))
     body = np.concatenate(samples)
     arcs = np.linspace(0.0, np.pi / 2, 5)[:-1]  # elevations from the pole, the ring excluded
     before = np.column_stack([x[0] - ends[0] * np.cos(arcs), r[0] * np.sin(arcs)])

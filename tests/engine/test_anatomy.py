@@ -65,6 +65,29 @@ def test_every_bone_part_is_closed_and_outward(default_arm):
         assert closed.volume > 0, name
 
 
+@pytest.mark.parametrize("upper_arm, forearm", [
+    (29.1 * 4, 29.1), (25.4, 25.4 * 4),  # a bone as much longer than the other as it may be
+    (1e6, 1e6), (1e-6 * 4, 1e-6),  # the ends of a bone's bound
+])
+def test_bones_at_their_bounds_are_closed_and_as_detailed_as_an_adult_s(upper_arm, forearm):
+    # A humerus 5 times the forearm ended in "a profile runs from a pole to a pole" (the
+    # ulna's spline, sized with both, dipped below zero); one of 1e6 cm was sampled every
+    # 0.6 cm, millions of rings, 5 GB.
+    ratio = upper_arm / 29.1
+    skeleton = Skeleton(upper_arm=upper_arm, forearm=forearm, origin_to_elbow=30.15 * ratio,
+                        origin_lateral=-2.2 * ratio, elbow_to_insertion=4.987 * forearm / 25.4)
+    adult = {name: len(parts) for name, (_, parts) in bone_parts(Skeleton()).items()}
+    for name, (_, parts) in bone_parts(skeleton).items():
+        assert len(parts) == adult[name]
+        for part in parts:
+            assert np.all(part.profile[1:-1, 1] > 0), name
+            assert len(part.profile) <= 2 * 32 * 10, name  # at most 32 samples between knots
+        for part in parts:
+            closed = trimesh.Trimesh(part.mesh(12).vertices, part.mesh(12).triangles,
+                                     process=False)
+            assert closed.is_watertight and closed.volume > 0, name
+
+
 def test_the_tubercles_reach_the_attachments_wherever_they_are():
     skeleton = Skeleton(origin_to_elbow=32.0, origin_forward=1.5, origin_lateral=-3.5,
                         elbow_to_insertion=6.0, insertion_forward=1.6, insertion_lateral=1.0)
