@@ -30,7 +30,7 @@ import click
 
 from biceps.configs import (DEFAULT as DEFAULT_CONFIG, FOLDER as BUNDLED, file_or_bundled,
                             named as bundled_model)
-from biceps.engine.bounds import COORDINATE, SCALE, OutOfBounds, finite
+from biceps.engine.bounds import ANGLE, COORDINATE, SCALE, OutOfBounds, finite
 from biceps.engine.errors import BicepsError
 from biceps.engine.names import printable
 from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Graphics, drawing_threads
@@ -60,6 +60,7 @@ class _FiniteFloat(click.ParamType):
 
 
 FINITE = _FiniteFloat()
+TURN = _FiniteFloat(ANGLE.low, ANGLE.high)
 
 USAGE_ERROR = 2
 GRAPHICS = list(get_args(Graphics))
@@ -523,9 +524,9 @@ def _parse_point(_ctx: Any, _param: Any, value: str | None) -> tuple[float, floa
 def view_options(command: Callable) -> Callable:
     """Options that override the config's view, light and rendering."""
     options = [
-        click.option("--yaw", type=FINITE, help="Turn about the vertical axis, degrees."),
-        click.option("--pitch", type=FINITE, help="Tilt about the horizontal axis, degrees."),
-        click.option("--roll", type=FINITE, help="Roll about the line of sight, degrees."),
+        click.option("--yaw", type=TURN, help="Turn about the vertical axis, degrees."),
+        click.option("--pitch", type=TURN, help="Tilt about the horizontal axis, degrees."),
+        click.option("--roll", type=TURN, help="Roll about the line of sight, degrees."),
         click.option("--scale", type=_FiniteFloat(SCALE.low, SCALE.high), help="Zoom factor."),
         click.option("--light", callback=_parse_point, metavar="X,Y,Z",
                      help="Light position in world space, cm."),
@@ -584,6 +585,7 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
     --kitty, --sixel and --iterm print a picture as wide as the terminal in its own pixels
     (as --ansi does in half-blocks), in that protocol, unless --size says otherwise.
     """
+    from biceps.engine.cost import check_picture
     from biceps.engine.export import check_writable, write_png
     from biceps.engine.scene import SMALL_PICTURE, SceneRenderer, supersampling
 
@@ -598,6 +600,9 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
     else:
         _writable_stdout(half_blocks=printed == "ansi")  # before any work
     scene = posed_scene(config, length, flexion, **overrides)
+    if size is not None or output is not None:  # (printed, as wide as the terminal)
+        width, height = size or PNG_SIZE
+        check_picture(width, height, supersampling(scene.render, height))  # before any work
     if _own_process():
         from biceps.engine.coldstart import prepare_kernels
 
@@ -707,11 +712,15 @@ def export_mesh(config: Path, output: Path, segments: int | None, length: float 
     from biceps.engine.config import load_config
     from biceps.engine.export import MESH_FORMATS, check_writable, write_mesh
 
+    from biceps.engine.cost import check_model
+
     check_writable(output, *MESH_FORMATS, read=config)
     loaded = load_config(config)
     arm = posed(loaded.arm, length, flexion)
     render = loaded.render
-    write_mesh(output, arm, segments or render.segments, render.muscle_colour, render.bone_colour)
+    segments = segments or render.segments
+    check_model([muscle.node_count for muscle in arm.muscles], segments)
+    write_mesh(output, arm, segments, render.muscle_colour, render.bone_colour)
     click.echo(f"wrote {printable(output)}", err=True)
 
 

@@ -13,13 +13,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from biceps.engine.cost import check_frames, check_picture
 from biceps.engine.errors import BicepsError
 from biceps.engine.movie import Progress
-from biceps.engine.scene import Scene, SceneRenderer
-
-MOST_FRAME_BYTES = 4 << 30
-"""The rendered pictures of one cycle are held in memory until they are encoded (an encoder
-compares each frame with the last); beyond this the machine would start to swap."""
+from biceps.engine.scene import Scene, SceneRenderer, supersampling
 
 
 @dataclass(frozen=True)
@@ -67,13 +64,8 @@ def check_cycle(scene: Scene, cycle: FlexCycle, width: int, height: int) -> None
     would not fit in memory: before any work, since rendering a cycle takes a while."""
     for flexion in (cycle.start, cycle.end):  # the poses between lie within them
         scene.arm.at_flexion(flexion)
-    needed = len(cycle.poses()) * width * height * 3
-    if needed > MOST_FRAME_BYTES:
-        raise BicepsError(
-            f"{len(cycle.poses())} different frames of {width}x{height} need "
-            f"{needed / (1 << 30):.1f} GB of memory, more than the {MOST_FRAME_BYTES >> 30} GB "
-            "allowed; ask for fewer frames or a smaller size"
-        )
+    check_picture(width, height, supersampling(scene.render, height))
+    check_frames(len(cycle.poses()), width, height)
 
 
 def render_cycle(scene: Scene, cycle: FlexCycle, width: int, height: int,

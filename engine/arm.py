@@ -12,6 +12,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from biceps.engine.bounds import cm
 from biceps.engine.companion import Companion, check_reach
 from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import Muscle
@@ -105,7 +106,7 @@ class Arm:
         low, high = self.length_range()
         if not low <= length <= high:
             raise RefusedChange(
-                f"length {length:.2f} cm is outside what this arm allows: "
+                f"length {cm(length)} cm is outside what this arm allows: "
                 f"{low:.2f} to {high:.2f} cm (elbow flexion "
                 # round(), an int: the straight arm's -1e-14 degrees is 0, not "-0"
                 f"{round(self.skeleton.flexion(high))} to {round(self.skeleton.flexion(low))} "

@@ -79,6 +79,19 @@ def whole(value: Any, limits: Limits) -> int:
     raise OutOfBounds(quoted(value), limits.of("a whole number"))
 
 
+def exactly(value: float) -> str:
+    """``value`` as short as it can be written and still read back as itself: ``130`` for
+    130.0, every digit of 30.999 or of 60.000000001 (which ``:g`` shows as 31 and 60)."""
+    short = f"{value:g}"
+    return short if float(short) == value else repr(value)
+
+
+def cm(value: float) -> str:
+    """A length (cm) as a message gives one it was asked for: to two places (``30.14``),
+    or where those would run to hundreds of digits (1e308), to three figures."""
+    return f"{value:.2f}" if abs(value) < 1e6 else f"{value:.3g}"
+
+
 def quoted(value: Any) -> str:
     """A value as a message quotes it: its repr, shortened; a long integer by its length."""
     text = repr(value)
@@ -109,7 +122,57 @@ SCALE = Limits(0.01, 100)
 """The view's zoom."""
 
 NODES = 20_000
-"""The most nodes a muscle may have. Each node is a ring of the mesh, made again at every
-length change: at 20,000 nodes that picture takes about 0.9 s and the process 0.7 GB, at
-100,000 about 6 s and 2.6 GB, against 5 ms and 0.16 GB at 15 (benchmarks/app_nodes.py). A
-picture has far fewer rows of pixels than that, so more nodes could not be seen anyway."""
+"""The most nodes a model may have, all its muscles together. Each node is a ring of the
+mesh, made again at every length change: at 20,000 nodes that picture takes about 0.9 s
+and the process 0.7 GB, at 100,000 about 6 s and 2.6 GB, against 5 ms and 0.16 GB at 15
+(benchmarks/app_nodes.py). A picture has far fewer rows of pixels than that, so more nodes
+could not be seen anyway."""
+
+MUSCLES = 16
+"""The most muscles a model may have, the driver among them: each one is laid on the bones
+and round the muscles before it at every pose (the elbow's six; an arm has about a dozen
+muscles that cross the elbow)."""
+
+LAYING = 40_000
+"""The most the muscles may cost to lay round each other: their number times their nodes
+together. Each muscle's sections keep clear of every section laid before it, at every
+pose, and its lean round the humerus is chosen over the elbow's range: 16 muscles of 156
+nodes (39,936) take 9 s of CPU a snapshot and 12 s an export, 16 of 300 (76,800) took
+40 s of a shared machine's wall time a snapshot (benchmarks/bad_files.py)."""
+
+MESH_VERTICES = 1_000_000
+"""The most vertices the muscles' meshes may have together: every muscle's nodes times the
+segments round it (``[render] segments``), 20,000 nodes at 50 segments, which take 11 s of
+CPU to export as OBJ and 0.7 GB. At 1,024 segments 20,000 nodes took 6 GB
+(benchmarks/bad_files.py)."""
+
+PICTURE_BYTES = 3 << 29
+"""The most memory (1.5 GiB) a picture's buffers may take: a colour (3 bytes) and a depth
+(4) per sample, ``ssaa`` x ``ssaa`` samples a pixel, and the picture averaged down (3 a
+pixel). 8192 x 8192 pixels take 0.47 GB, with 2 x 2 supersampling 1.9 GB."""
+
+ANIMATION_BYTES = 3 << 29
+"""The most memory (1.5 GiB) an animation's frames may take while they are encoded: each
+different frame kept (3 bytes a pixel) and its copy in the encoder (up to 4)."""
+
+ANGLE = Limits(-360, 360, unit=" degrees")
+"""How far the view is turned about each axis: a turn either way (the app keeps its turns
+within half of one). At 1e308 degrees the sine is an accident of floating point."""
+
+FLEXION_SPAN = 1.0
+"""The narrowest range the elbow may have, in degrees: a muscle's fine step (0.1 cm) moves
+the elbow about 1 degree."""
+
+BONE_RATIO = 4.0
+"""The most one bone (the upper arm, the forearm) may be longer than the other: an adult's
+differ by 15 %; one a thousand times the other is no arm."""
+
+ATTACHMENT_ALONG = (-0.25, 1.25)
+"""Where along its bone a muscle may hold on, as fractions of the bone's length from the
+elbow: from a quarter behind the elbow's centre (the olecranon, above it) to a quarter past
+the far end (the shoulder blade, above the humeral head); on the forearm, not past the hand
+(1.0)."""
+
+ATTACHMENT_REACH = 0.5
+"""How far from its bone's axis a muscle may hold on, as a fraction of the bone's length
+(arm26's farthest, the triceps' long head on the shoulder blade, is 0.15 of the humerus)."""

@@ -25,6 +25,7 @@ from pydantic import BaseModel, ConfigDict, Field, PlainValidator, ValidationErr
 from biceps.configs import DEFAULT as DEFAULT_CONFIG, FOLDER as BUNDLED
 from biceps.engine.arm import Arm
 from biceps.engine.bounds import (
+    ANGLE,
     BONE,
     COORDINATE,
     GROWTH,
@@ -32,11 +33,14 @@ from biceps.engine.bounds import (
     SCALE,
     Limits,
     OutOfBounds,
+    cm,
+    exactly,
     finite,
     quoted,
     whole,
 )
 from biceps.engine.companion import Companion, reach_problem
+from biceps.engine.cost import model_problem
 from biceps.engine.errors import ConfigError, FileChanged, FileError, RefusedChange
 from biceps.engine.files import read_regular_file, same_file, write_atomically
 from biceps.engine.muscle import Muscle, VolumeMode
@@ -53,7 +57,7 @@ from biceps.engine.settings import (
     View,
 )
 from biceps.engine.path import MusclePath, Wrap, WrapSide
-from biceps.engine.skeleton import Attachment, Skeleton, skeleton_problem
+from biceps.engine.skeleton import Attachment, Skeleton, attachment_problem, skeleton_problem
 from biceps.engine.transforms import FRACTION, SHININESS, Light
 
 
@@ -67,9 +71,9 @@ def _whole(limits: Limits) -> Any:
     return PlainValidator(lambda value: whole(value, limits))
 
 
-Number = Annotated[float, _number()]
 Positive = Annotated[float, _number(Limits(0, exclusive=True, unit=" cm"))]
 Degrees = Annotated[float, _number(Limits(0, 180, unit=" degrees"))]
+Angle = Annotated[float, _number(ANGLE)]
 Radius = Annotated[float, _number(RADIUS)]
 Growth = Annotated[float, _number(GROWTH)]
 Bone = Annotated[float, _number(BONE)]
@@ -205,9 +209,9 @@ class ViewTable(_Table):
     """How the model is turned, moved and scaled, and the camera's field of view, as in
     :class:`View`, whose defaults and bounds these are."""
 
-    yaw: Number = View.yaw
-    pitch: Number = View.pitch
-    roll: Number = View.roll
+    yaw: Angle = View.yaw
+    pitch: Angle = View.pitch
+    roll: Angle = View.roll
     scale: Annotated[float, _number(SCALE)] = View.scale
     offset: Vector = View.offset
     fov: Annotated[float, _number(FIELD_OF_VIEW)] = View.fov
@@ -286,8 +290,10 @@ class Config:
     source: str
 
 
-LARGEST_FILE = 4 << 20
-"""Bytes a configuration may have: ten times what the most nodes a muscle may have take."""
+LARGEST_FILE = 1 << 20
+"""Bytes a configuration may have: the most nodes a model may have, one to a line with a
+comment each, take about half as many. TOML is read in Python: a file of 2.4 MB of small
+tables took 5 s to read, only to be refused."""
 
 DEEPEST = 64
 """Arrays and tables nested deeper than this are refused before they are parsed (the
@@ -312,6 +318,7 @@ def _parsed(path: Path, source: str) -> Config:
     except RecursionError:  # nesting that the check above did not see as such
         raise ConfigError(f"{printable(path)}: arrays or tables nested too deep to read; a "
                           "configuration needs at most 2 levels") from None
+    _check_cost(path, source, data)
     try:
         table = ConfigFile.model_validate(data)
     except ValidationError as error:
@@ -359,6 +366,36 @@ def _check_nesting(path: Path, source: str) -> None:
             depth = max(depth - 1, 0)
 
 
+def _check_cost(path: Path, source: str, data: dict) -> None:
+    """Refuse a file whose muscles, nodes or mesh cost more than the bounds allow, from the
+    parsed TOML, before each value is validated: 10,000 muscles, or 240,000 nodes, took 12 s
+    to validate only to be refused."""
+    tables = [data.get("muscle"), *_values(data.get("muscles"))]
+    nodes = [len(_node_list(table)) for table in tables if isinstance(table, dict)]
+    render = data.get("render")
+    segments = render.get("segments") if isinstance(render, dict) else None
+    if not isinstance(segments, int) or isinstance(segments, bool):
+        segments = RenderSettings.segments  # or wrong, which validating says
+    problem = model_problem(nodes, segments)
+    if problem is not None:
+        over, reason = problem
+        where = {"muscles": ("muscles",), "segments": ("render", "segments")}.get(over)
+        if where is None:
+            driver = data.get("muscle")
+            where = ("muscle", "radius" if isinstance(driver, dict) and "nodes" not in driver
+                     else "nodes")
+        raise ConfigError(_located(path, source, where, reason))
+
+
+def _values(table: Any) -> list:
+    return list(table.values()) if isinstance(table, dict) else []
+
+
+def _node_list(table: dict) -> list:
+    nodes = table.get("nodes", table.get("radius"))
+    return nodes if isinstance(nodes, list) else []
+
+
 # Brackets outside strings and comments: strings and comments are matched whole and skipped.
 _NESTING = re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*|[\[\]{}]')
 
@@ -391,7 +428,7 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
         raise fail(
             ("muscle", "min_length"),
             f"the limits leave no length: min_length, max_length and the joint's range "
-            f"intersect to nothing ({low:.2f} > {high:.2f} cm)",
+            f"intersect to nothing ({exactly(low)} > {exactly(high)} cm)",
         )
     _check_reach(arm, length, "flexion" if muscle_table.flexion is not None else "length", fail)
     pose = _length_of(muscle_table.pose_length, muscle_table.pose_flexion, "pose_flexion",
@@ -410,12 +447,18 @@ def _companions(table: ConfigFile, skeleton: Skeleton,
     """The ``[muscles.NAME]`` tables as companions at rest, checked to follow the elbow over
     the joint's whole range."""
     companions = []
+    paths = {table.muscle.name: MusclePath(skeleton.origin, skeleton.insertion)}
     for index, (name, companion_table) in enumerate(table.muscles.items()):
         where = ("muscles", name)
         if name == table.muscle.name:
             raise fail(where, f"{name!r} is the [muscle]'s name already: give each muscle "
                               "its own")
         path = companion_table.path()
+        # The path first: a muscle with nowhere to lie cannot be given a length.
+        problem = _path_problem(path, skeleton, paths)
+        if problem is not None:
+            raise fail((*where, problem[0]), problem[1])
+        paths[name] = path
         length = companion_table.length
         if companion_table.flexion is not None:
             _check_flexion(companion_table.flexion, skeleton, (*where, "flexion"), fail)
@@ -425,9 +468,6 @@ def _companions(table: ConfigFile, skeleton: Skeleton,
             muscle = Muscle.of(radii, growth, length, companion_table.volume)
         except RefusedChange as error:
             raise fail((*where, companion_table.nodes_key(str(error))), str(error)) from None
-        problem = _path_problem(path, skeleton)
-        if problem is not None:
-            raise fail((*where, problem[0]), problem[1])
         colour = companion_table.colour or COMPANION_COLOURS[index % len(COMPANION_COLOURS)]
         companion = Companion(name, muscle, path, colour)
         problem = reach_problem(companion, skeleton.min_flexion, skeleton.max_flexion)
@@ -437,9 +477,21 @@ def _companions(table: ConfigFile, skeleton: Skeleton,
     return tuple(companions)
 
 
-def _path_problem(path: MusclePath, skeleton: Skeleton) -> tuple[str, str] | None:
+def _path_problem(path: MusclePath, skeleton: Skeleton,
+                  others: dict[str, MusclePath]) -> tuple[str, str] | None:
     """The key to blame and why, if ``path``'s attachments cannot hold a muscle over the
-    joint's range (they meet, or sit inside the wrapping cylinder); None if they can."""
+    joint's range (off their bones, where one of the ``others`` by name already runs,
+    meeting, inside the wrapping cylinder); None if they can."""
+    for key, attachment in (("origin", path.origin), ("insertion", path.insertion)):
+        problem = attachment_problem(attachment, skeleton)
+        if problem is not None:
+            return key, problem[1]
+    for name, other in others.items():
+        if all(np.allclose(mine.in_frame(), theirs.in_frame(), rtol=0.0, atol=SAME_PLACE)
+               for mine, theirs in ((path.origin, other.origin),
+                                    (path.insertion, other.insertion))):
+            return "origin", (f"runs where {name} runs, from the same origin to the same "
+                              "insertion: give each muscle its own path")
     for flexion in (skeleton.min_flexion, skeleton.max_flexion):
         start, end = path.ends(flexion)
         if np.linalg.norm(end - start) < 0.5:
@@ -481,11 +533,14 @@ def _check_reach(arm: Arm, length: float, key: str,
     if not low - 1e-9 <= length <= high + 1e-9:
         raise fail(
             ("muscle", key),
-            f"length {length:.2f} cm is outside what the skeleton and limits allow: "
+            f"length {cm(length)} cm is outside what the skeleton and limits allow: "
             f"{low:.2f} to {high:.2f} cm",
         )
     return min(max(length, low), high)
 
+
+SAME_PLACE = 0.01
+"""cm: attachments closer than this are one place."""
 
 MOST_PROBLEMS = 5
 """Problems a message lists; a file with thousands of bad nodes gets the first few and a count."""
@@ -514,7 +569,7 @@ def _problem(within: tuple, problem: dict) -> str:
         return f"the [{location[0]}] table is required, but missing"
     if kind == "missing":
         return "required, but missing"
-    if kind == "string_pattern_mismatch" and location[-1] == "[key]":  # a muscle's name
+    if kind == "string_pattern_mismatch" and location[-1] in ("[key]", "name"):  # a muscle's
         return (f"a muscle's name is 1 to 40 letters, digits, '_' or '-' "
                 f"(found {printable(quoted(found))})")
     if kind == "string_pattern_mismatch":  # the other patterns are colours
@@ -544,7 +599,7 @@ def _unknown_key_message(location: tuple) -> str:
             model = None
             break
     allowed = list(model.model_fields) if isinstance(model, type) else []
-    message = f"unknown key {printable(repr(key))}"
+    message = f"unknown key {printable(quoted(str(key)))}"
     close = difflib.get_close_matches(str(key), allowed, n=1)
     if parents and key in ConfigFile.model_fields:
         # Rather than a near name by its letters (skeleton is not pose_flexion misspelt).
@@ -566,7 +621,9 @@ class _NamedTables:
 def _located(path: Path, source: str, location: tuple, message: str) -> str:
     # pydantic marks a problem with a table's name (a key of [muscles]) as its "[key]".
     location = tuple(part for part in location if part != "[key]")
-    dotted = ".".join(printable(str(part)) for part in location if isinstance(part, str))
+    # A key of thousands of letters is shown by its start: the message quotes it whole.
+    dotted = ".".join(printable(part if len(part) <= 40 else f"{part[:37]}...")
+                      for part in location if isinstance(part, str))
     for part in location:
         if isinstance(part, int):
             dotted += f"[{part}]"

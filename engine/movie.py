@@ -92,7 +92,7 @@ def _pillow(suffix: str, frames: list[np.ndarray], fps: float, tell: Progress) -
         pictures = _shared_palette(frames, tell)
         options = {"format": "GIF", "duration": durations(len(frames), fps, 10)}
     else:
-        pictures = [Image.fromarray(frame, "RGB") for frame in frames]
+        pictures = _pictures(frames)
         options = {"format": "PNG", "compress_level": PNG_COMPRESS_LEVEL} if suffix == ".apng" \
             else {"format": "WEBP", "quality": WEBP_QUALITY}
         options["duration"] = durations(len(frames), fps, 1)
@@ -100,6 +100,16 @@ def _pillow(suffix: str, frames: list[np.ndarray], fps: float, tell: Progress) -
     pictures[0].save(buffer, save_all=True, append_images=pictures[1:], loop=0, **options)
     tell(len(frames), len(frames))
     return buffer.getvalue()
+
+
+def _pictures(frames: list[np.ndarray]) -> list[Image.Image]:
+    """The frames as pictures, one for each different frame however often it is shown (a
+    bounce shows each twice): Pillow keeps an RGB picture in 4 bytes a pixel."""
+    made: dict[int, Image.Image] = {}
+    for frame in frames:
+        if id(frame) not in made:
+            made[id(frame)] = Image.fromarray(frame, "RGB")
+    return [made[id(frame)] for frame in frames]
 
 
 def _shared_palette(frames: list[np.ndarray], tell: Progress) -> list[Image.Image]:

@@ -22,7 +22,8 @@ from typing import Literal
 
 import numpy as np
 
-from biceps.engine.bounds import GROWING, GROWTH, NODES, RADIUS, Limits, OutOfBounds, finite
+from biceps.engine.bounds import (GROWING, GROWTH, NODES, RADIUS, Limits, OutOfBounds, cm,
+                                  finite)
 from biceps.engine.errors import RefusedChange
 
 VolumeMode = Literal["closed", "frusta"]
@@ -283,7 +284,7 @@ class Muscle:
         radii = self.reference_radii + step * self.growth
         if not np.isfinite(step) or not np.all(np.isfinite(radii)):
             raise RefusedChange(
-                f"cannot reach {length:.2f} cm: the growth coefficients are too small to keep "
+                f"cannot reach {cm(length)} cm: the growth coefficients are too small to keep "
                 "the volume"
             )
         if radii.min() <= 0:
@@ -294,7 +295,7 @@ class Muscle:
             # Near the length at which a radius vanishes, the step is the difference of
             # nearly equal terms and loses digits: say so rather than show a wrong volume.
             raise RefusedChange(
-                f"cannot reach {length:.2f} cm at constant volume: so close to node "
+                f"cannot reach {cm(length)} cm at constant volume: so close to node "
                 f"{self.rest.law.first_to_thin + 1}'s vanishing the volume cannot be kept "
                 f"to {VOLUME_TOLERANCE:g} (it would be off by {muscle.volume_error:.1e})"
             )
@@ -302,7 +303,7 @@ class Muscle:
 
     def _too_long_message(self, length: float) -> str:
         return (
-            f"cannot stretch to {length:.2f} cm: {self.thinnest_note()} at "
+            f"cannot stretch to {cm(length)} cm: {self.thinnest_note()} at "
             f"{self.longest_length:.2f} cm, the longest this muscle can be"
         )
 

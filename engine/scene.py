@@ -20,6 +20,7 @@ from biceps.engine import coldstart
 from biceps.engine.anatomy import arm_parts, tendon_share
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, rgb
+from biceps.engine.cost import check_picture
 from biceps.engine.jit import exact, ngjit
 from biceps.engine.mesh import Mesh
 from biceps.engine.render import Renderer
@@ -295,14 +296,17 @@ class SceneRenderer:
         self._outline: np.ndarray | None = None
 
     def render(self, scene: Scene, width: int, height: int) -> np.ndarray:
-        """The picture of ``scene``: (height, width, 3) uint8, valid until the next call."""
+        """The picture of ``scene``: (height, width, 3) uint8, valid until the next call;
+        :class:`BicepsError` if its buffers would take more memory than the bound."""
+        ssaa = supersampling(scene.render, height)
+        check_picture(width, height, ssaa)
         mesh, albedo = self._mesh_of(scene)
         camera, model = view_camera(scene.view, self._outline, width / height)
         light = zoomed_light(scene.light, scene.view.scale, camera)
         return self._renderer.render(
             mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
             light, width, height, shading=scene.render.shading,
-            ssaa=supersampling(scene.render, height), background=rgb(scene.render.background),
+            ssaa=ssaa, background=rgb(scene.render.background),
         )  # fmt: skip
 
     def _mesh_of(self, scene: Scene) -> tuple[Mesh, np.ndarray]:

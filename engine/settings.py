@@ -16,7 +16,8 @@ import re
 from dataclasses import dataclass, fields
 from typing import Any, Callable, Literal, Mapping, get_args
 
-from biceps.engine.bounds import COORDINATE, SCALE, Limits, OutOfBounds, finite, quoted, whole
+from biceps.engine.bounds import (ANGLE, COORDINATE, SCALE, Limits, OutOfBounds, finite, quoted,
+                                  whole)
 from biceps.engine.errors import SettingError
 
 Shading = Literal["gouraud", "phong"]
@@ -142,8 +143,8 @@ class View:
     fov: float = 35.0
 
     def __post_init__(self) -> None:
-        settle(self, "view", yaw=number(), pitch=number(), roll=number(), scale=number(SCALE),
-               offset=point, fov=number(FIELD_OF_VIEW))
+        settle(self, "view", yaw=number(ANGLE), pitch=number(ANGLE), roll=number(ANGLE),
+               scale=number(SCALE), offset=point, fov=number(FIELD_OF_VIEW))
 
 
 SEGMENTS = Limits(3, 1024)

@@ -36,7 +36,8 @@ from typing import Literal
 
 import numpy as np
 
-from biceps.engine.bounds import BONE, COORDINATE, OutOfBounds, finite
+from biceps.engine.bounds import (ATTACHMENT_ALONG, ATTACHMENT_REACH, BONE, BONE_RATIO,
+                                  COORDINATE, FLEXION_SPAN, OutOfBounds, exactly, finite)
 from biceps.engine.errors import RefusedChange
 
 Bone = Literal["upper_arm", "forearm"]
@@ -206,14 +207,32 @@ def skeleton_problem(skeleton: Skeleton) -> tuple[str, str] | None:
                 finite(getattr(skeleton, name), limits)
             except OutOfBounds as error:
                 return name, str(error)
+    upper, fore = skeleton.upper_arm, skeleton.forearm
+    if max(upper, fore) > BONE_RATIO * min(upper, fore):
+        longer = "upper_arm" if upper > fore else "forearm"
+        return longer, (f"{max(upper, fore):g} cm is more than {BONE_RATIO:g} times the "
+                        f"{'forearm' if longer == 'upper_arm' else 'upper arm'}'s "
+                        f"{min(upper, fore):g} cm: no arm is so out of proportion")
     if skeleton.elbow_to_insertion > skeleton.forearm:
         return "elbow_to_insertion", (
             f"must be at most the forearm's length, {skeleton.forearm:g} cm, not "
             f"{skeleton.elbow_to_insertion:g}: the muscle inserts on the forearm")
+    for end, keys in (("origin", ("origin_to_elbow", "origin_forward", "origin_lateral")),
+                      ("insertion", ("elbow_to_insertion", "insertion_forward",
+                                     "insertion_lateral"))):
+        attachment = getattr(skeleton, end)
+        problem = attachment_problem(attachment, skeleton)
+        if problem is not None:
+            across = 1 if abs(attachment.forward) >= abs(attachment.lateral) else 2
+            return keys[0 if problem[0] == "along" else across], problem[1]
     low, high = skeleton.min_flexion, skeleton.max_flexion
     if not 0.0 <= low < high <= 180.0:
         return "flexion_range", (f"flexion range must satisfy 0 <= min_flexion < max_flexion "
                                  f"<= 180 degrees, got {low} to {high}")
+    if high - low < FLEXION_SPAN:
+        return "flexion_range", (f"{exactly(low)} to {exactly(high)} degrees is "
+                                 f"{high - low:.3g} degrees wide; the elbow needs at least "
+                                 f"{FLEXION_SPAN:g} to move")
     # The law of cosines gives one length per flexion only while psi stays within 0 and
     # 180 degrees: the muscle's line must pass in front of the elbow's axis all the way.
     psi0 = math.degrees(skeleton._triangle()[3])
@@ -225,6 +244,27 @@ def skeleton_problem(skeleton: Skeleton) -> tuple[str, str] | None:
         return "flexion_range", (
             f"at {high:g} degrees the forearm would fold past the muscle's origin: lower the "
             f"range's end below {psi0:.1f} degrees")
+    return None
+
+
+def attachment_problem(attachment: Attachment, skeleton: Skeleton) -> tuple[str, str] | None:
+    """Whether ``attachment`` is off its bone of ``skeleton``: "along" (too far along it)
+    or "across" (too far from its axis, ``ATTACHMENT_ALONG``, ``ATTACHMENT_REACH``), and
+    why in words; None if it is on it."""
+    length = skeleton.upper_arm if attachment.bone == "upper_arm" else skeleton.forearm
+    bone = "the upper arm" if attachment.bone == "upper_arm" else "the forearm"
+    low, high = ATTACHMENT_ALONG
+    if attachment.bone == "forearm":
+        high = 1.0  # no hand past the wrist to hold on to
+    if not low * length <= attachment.along <= high * length:
+        return "along", (f"{attachment.along:g} cm along {bone} is off the bone, {length:g} cm "
+                         f"long: an attachment lies from {low * length:g} to "
+                         f"{high * length:g} cm along it")
+    reach = math.hypot(attachment.forward, attachment.lateral)
+    if reach > ATTACHMENT_REACH * length:
+        return "across", (f"{reach:g} cm from {bone}'s axis is off the bone, {length:g} cm "
+                          f"long: an attachment lies within {ATTACHMENT_REACH * length:g} cm "
+                          "of its axis")
     return None
 
 

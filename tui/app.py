@@ -34,11 +34,12 @@ from textual.theme import ThemeProvider
 from biceps.configs import FOLDER as BUNDLED_MODELS, file_or_bundled
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, load_config, save_config
+from biceps.engine.cost import check_model, check_picture
 from biceps.engine.errors import BicepsError, FileChanged
 from biceps.engine.export import check_writable, parse_size, write_png
 from biceps.engine.files import same_file
 from biceps.engine.names import printable
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene, SceneRenderer, supersampling
 from biceps.tui import detect
 from biceps.tui.ahead import compile_ahead, lean_once_ready
 from biceps.tui.changes import (
@@ -431,6 +432,8 @@ class BicepsApp(App[None]):
         arm, index = self.scene.arm, self.scene.selected
         try:
             edited = arm.with_muscle_at(index, message.change(arm.muscles[index]))
+            check_model([muscle.node_count for muscle in edited.muscles],
+                        self.scene.render.segments)
         except BicepsError as error:
             self._refuse(str(error))
             return
@@ -570,8 +573,7 @@ class BicepsApp(App[None]):
                 Field("Size in pixels", self._export_size, parse_size),
             ]
             prompt = Prompt("Export a PNG", fields, accept="Export",
-                            check=lambda path, size: check_writable(
-                                path, ".png", read=self.config.path))
+                            check=lambda path, size: self._check_export(path, *size))
             answer = await self.push_screen_wait(prompt)
             if answer is None:
                 return
@@ -580,6 +582,10 @@ class BicepsApp(App[None]):
             if not os.path.exists(path) or await self._confirm_replace(path):
                 break
         self._write_picture(self.scene, path, width, height)
+
+    def _check_export(self, path: Path, width: int, height: int) -> None:
+        check_writable(path, ".png", read=self.config.path)
+        check_picture(width, height, supersampling(self.scene.render, height))
 
     @work(thread=True, group="export")
     def _write_picture(self, scene: Scene, path: Path, width: int, height: int) -> None:

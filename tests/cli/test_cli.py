@@ -378,3 +378,26 @@ def test_info_json_is_strict_json_at_the_bounds(tmp_path):
     facts = json.loads(result.stdout, parse_constant=refuse)
     assert facts["max_radius_cm"] == 1e4
 
+
+
+@pytest.mark.parametrize("args, words", [
+    (["snapshot", "-o", "{out}/big.png", "--size", "8192x8192", "--ssaa", "2"],
+     "a picture of 8192x8192 with 2x2 supersampling needs 1.94 GiB of memory, more than the "
+     "1.50 GiB allowed"),
+    (["animate", "-o", "{out}/flex.gif", "--frames", "10000", "--size", "640x360"],
+     "5,001 different frames of 640x360 need 7.51 GiB of memory to encode, more than the "
+     "1.50 GiB allowed: at this size at most 998 different frames"),
+    (["export-mesh", "{model}", "-o", "{out}/arm.obj", "--segments", "1001"],
+     "1,000 nodes at 1,001 segments round each make 1,001,000 vertices; at most 1,000,000"),
+], ids=["snapshot", "animate", "export-mesh"])
+def test_work_beyond_the_memory_bounds_is_refused_before_it_starts(tmp_path, args, words):
+    model = tmp_path / "model" / "fine.toml"  # 1,000 nodes: at 1,000 segments, the most
+    model.parent.mkdir()
+    model.write_text("[muscle]\nlength = 33.0\nnodes = [" + "[1.0, 1.0], " * 1000 + "]\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    result = run(*[arg.replace("{out}", str(out)).replace("{model}", str(model))
+                   for arg in args])
+    assert result.exit_code == 2
+    assert words in result.stderr
+    assert list(out.iterdir()) == []

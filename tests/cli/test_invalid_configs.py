@@ -10,7 +10,7 @@ import pytest
 from click.testing import CliRunner
 
 from biceps.cli import main
-from biceps.engine.bounds import NODES
+from biceps.engine.bounds import MUSCLES, NODES
 from biceps.engine.config import LARGEST_FILE
 
 INVALID = Path(__file__).resolve().parents[1] / "invalid_configs"
@@ -38,6 +38,30 @@ INVALID_CASES = {
                                    "mean 'wrap'?); allowed here: volume, length, flexion, nodes, "
                                    "radius, growth, origin, insertion, wrap, wrap_radius, colour"),
     "companion_wrap_without_radius.toml": ":5: muscles.brachialis: wrap and wrap_radius go together",
+    "bones_out_of_proportion.toml": (":6: skeleton.upper_arm: 1e+06 cm is more than 4 times "
+                                     "the forearm's 25.4 cm"),
+    "companion_at_the_elbow.toml": (":9: muscles.brachialis.insertion: origin and insertion "
+                                    "come within 0.5 cm of each other"),
+    "companion_off_its_bone.toml": (":8: muscles.brachialis.origin: 1e+07 cm along the upper "
+                                    "arm is off the bone, 29.1 cm long: an attachment lies "
+                                    "from -7.275 to 36.375 cm along it"),
+    "companion_past_the_hand.toml": (":9: muscles.brachialis.insertion: 525.4 cm along the "
+                                     "forearm is off the bone, 25.4 cm long"),
+    "companions_on_one_path.toml": (":15: muscles.brachialis2.origin: runs where brachialis "
+                                    "runs, from the same origin to the same insertion"),
+    "flexion_range_a_hair_wide.toml": (":6: skeleton.flexion_range: 60 to 60.000000001 degrees "
+                                       "is 1e-09 degrees wide; the elbow needs at least 1"),
+    "huge_yaw.toml": ":6: view.yaw: must be a finite number from -360 to 360 degrees (found "
+                     "1e+308)",
+    "limits_a_hair_apart.toml": (":2: muscle.min_length: the limits leave no length: "
+                                 "min_length, max_length and the joint's range intersect to "
+                                 "nothing (31 > 30.999 cm)"),
+    "muscle_name_with_a_space.toml": (":2: muscle.name: a muscle's name is 1 to 40 letters, "
+                                      "digits, '_' or '-' (found 'long head')"),
+    "origin_off_the_humerus.toml": (":6: skeleton.origin_to_elbow: 100 cm along the upper arm "
+                                    "is off the bone"),
+    "too_many_vertices.toml": (":6: render.segments: 1,000 nodes at 1,024 segments round each "
+                               "make 1,024,000 vertices; at most 1,000,000 are drawn"),
     "binary_junk.toml": "not a text file (byte 0 is not UTF-8); a configuration is a TOML text",
     "boolean_scale.toml": ":6: view.scale: must be a finite number from 0.01 to 100 (found True)",
     "broken_toml.toml": "not valid TOML",
@@ -123,6 +147,26 @@ def _too_many_nodes(folder: Path) -> Path:
     return path
 
 
+def _companion(name: str, nodes: int = 3) -> str:
+    return (f"[muscles.m{name}]\nflexion = 0.0\nnodes = [" + "[1.0, 1.0], " * nodes + "]\n"
+            f"origin = [{10.0 + 0.1 * len(name)}, 1.0, 0.87]\ninsertion = [4.0, 1.0, 0.0]\n")
+
+
+def _too_many_nodes_together(folder: Path) -> Path:
+    path = folder / "too_many_nodes_together.toml"
+    half = NODES // 2 + 1
+    path.write_text("[muscle]\nlength = 33.0\nnodes = [" + "[1.0, 1.0], " * half + "]\n"
+                    + _companion("1", half))
+    return path
+
+
+def _too_many_muscles(folder: Path) -> Path:
+    path = folder / "too_many_muscles.toml"
+    path.write_text("[muscle]\nlength = 33.0\nnodes = [[1.0, 1.0], [1.0, 1.0]]\n"
+                    + "".join(_companion("x" * i) for i in range(1, MUSCLES + 1)))
+    return path
+
+
 def _too_large(folder: Path) -> Path:
     path = folder / "too_large.toml"
     with path.open("wb") as stream:  # sparse: the size without the disk
@@ -165,9 +209,13 @@ def _long_lines_of_spaces(folder: Path) -> Path:
 # Files made for each test, as they cannot be kept in the repository, and what the message
 # must say about each.
 MADE_CASES = {
-    "too many nodes": (_too_many_nodes, f":3: muscle.nodes: a muscle has at most {NODES:,} "
-                                        f"nodes, not {NODES + 1:,}"),
-    "too large": (_too_large, ": is larger than 4 MiB, too large to be a configuration"),
+    "too many nodes": (_too_many_nodes, f":3: muscle.nodes: {NODES + 1:,} nodes; a model has "
+                                        f"at most {NODES:,}, all its muscles together"),
+    "too many nodes together": (_too_many_nodes_together, f":3: muscle.nodes: {NODES + 2:,} "
+                                                          f"nodes; a model has at most {NODES:,}"),
+    "too many muscles": (_too_many_muscles, f":4: muscles: {MUSCLES + 1} muscles; a model has "
+                                            f"at most {MUSCLES}"),
+    "too large": (_too_large, ": is larger than 1 MiB, too large to be a configuration"),
     "a pipe": (_pipe, ": is a pipe (FIFO), not a regular file"),
     "a link to /dev/zero": (_endless_device, ": is a character device, not a regular file"),
     "a folder": (_folder, ": is a directory, not a regular file"),

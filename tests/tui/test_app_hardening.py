@@ -285,14 +285,14 @@ def _endless(folder: Path) -> Path:
 
 def _too_many_nodes(folder: Path) -> Path:
     path = folder / "fine.toml"
-    path.write_text("[muscle]\nlength = 33.0\nnodes = [\n" + "[1.0, 1.0],\n" * 100_000 + "]\n")
+    path.write_text("[muscle]\nlength = 33.0\nnodes = [\n" + "[1.0, 1.0],\n" * 30_000 + "]\n")
     return path
 
 
 @pytest.mark.parametrize("make, message", [
     (_pipe, "pipe.toml: is a pipe (FIFO), not a regular file"),
     (_endless, "zero.toml: is a character device, not a regular file"),
-    (_too_many_nodes, "muscle.nodes: a muscle has at most 20,000 nodes, not 100,000"),
+    (_too_many_nodes, "muscle.nodes: 30,000 nodes; a model has at most 20,000"),
 ])
 async def test_opening_what_is_not_a_configuration_says_so_at_once(biceps, tmp_path, make,
                                                                    message):

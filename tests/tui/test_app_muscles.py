@@ -153,3 +153,17 @@ async def test_a_node_opened_in_the_same_burst_as_a_change_shows_and_keeps_what_
         await session.pilot.press("enter")  # OK with nothing typed: the node stays as it was
         kept = app.scene.arm.muscles[app.scene.selected]
         assert (kept.radii[7], kept.growth[7]) == (picked.radii[7], picked.growth[7])
+
+
+async def test_an_edit_past_the_most_nodes_of_all_the_muscles_together_is_refused(
+        biceps, elbow, monkeypatch):
+    total = sum(muscle.node_count for muscle in elbow.arm.muscles)
+    monkeypatch.setattr("biceps.engine.cost.NODES", total + 9)
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app = session.app
+        before = app.scene.arm
+        await session.pilot.press("t", "tab", "slash")  # the BRA's 11 nodes would make 21
+        await session.settle()
+        assert app.scene.arm is before
+        assert session.warnings[-1] == (f"{total + 10} nodes; a model has at most {total + 9}, "
+                                        "all its muscles together")

@@ -15,6 +15,7 @@ from textual.containers import Grid, Horizontal, Vertical
 from textual.widgets import Button, Input, Label
 
 from biceps.engine.animate import FlexCycle, check_cycle
+from biceps.engine.bounds import exactly
 from biceps.engine.errors import shown
 from biceps.engine.export import parse_size
 from biceps.engine.movie import ANIMATION_FORMATS, check_animation
@@ -48,13 +49,6 @@ def parse_motion(text: str) -> bool:
     return MOTIONS[motion]
 
 
-def _exactly(angle: float) -> str:
-    """``130`` for 130.0, but every digit of an end worked back from a length limit, which
-    rounded to six digits could fall outside the range and be refused."""
-    short = f"{angle:g}"
-    return short if float(short) == angle else repr(angle)
-
-
 def as_recording(path: Path, size: tuple[int, int], start: float, end: float, frames: int,
                  fps: float, bounce: bool) -> Recording:
     """The dialog's values as a :class:`Recording`; raises :class:`BicepsError` if the cycle
@@ -76,8 +70,10 @@ class RecordPrompt(Prompt):
         fields = [
             Field("File", printable(last.path), parse_path, PathSuggester(ANIMATION_FORMATS)),
             Field("Size in pixels", f"{last.width}x{last.height}", parse_size),
-            Field("From, degrees", _exactly(cycle.start), parse_number),
-            Field("To, degrees", _exactly(cycle.end), parse_number),
+            # Every digit of an end worked back from a length limit, which rounded to six
+            # digits could fall outside the range and be refused.
+            Field("From, degrees", exactly(cycle.start), parse_number),
+            Field("To, degrees", exactly(cycle.end), parse_number),
             Field("Frames", str(cycle.frames), parse_frames),
             Field("Frames a second", f"{last.fps:g}", parse_number),
             Field("Bounce or loop", "bounce" if cycle.bounce else "loop", parse_motion),
