@@ -20,7 +20,7 @@ from biceps.tui.screens.choice import Choice
 from biceps.tui.screens.help import HelpScreen
 from biceps.tui.screens.main import MainScreen
 from biceps.tui.screens.once import Palette
-from biceps.tui.screens.prompt import Prompt
+from biceps.tui.screens.prompt import LONGEST, Prompt
 from biceps.tui.terminal_input import LenientParser, decode_leniently
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.recorder import Recorder
@@ -236,6 +236,22 @@ async def test_a_pasted_escape_sequence_is_not_taken_into_a_dialog(biceps):
         box.post_message(events.Paste("fine.png"))
         await session.settle()
         assert box.value.endswith("fine.png")
+
+
+@pytest.mark.parametrize("key", ["e", "v"])
+async def test_a_paste_longer_than_a_path_is_not_taken_into_a_dialog(biceps, key):
+    # 100,000 characters in a field made every later key cost time in proportion.
+    async with biceps() as session:
+        await session.pilot.press(key)
+        box = session.app.screen.query(Input).first()
+        before = box.value
+        box.post_message(events.Paste("x" * 100_000))
+        await session.settle()
+        assert box.value == before
+        box.value = ""
+        box.post_message(events.Paste("y" * LONGEST))
+        await session.settle()
+        assert box.value == "y" * LONGEST
 
 
 @pytest.mark.parametrize("name, message", [

@@ -25,6 +25,11 @@ T = TypeVar("T")
 # when the field shows them (a paste can hold an escape sequence).
 PRINTABLE = r"[^\x00-\x1f\x7f-\x9f]*"
 
+LONGEST = 4096
+"""The most characters a field takes, a path's worth: a paste of 100,000 made every key
+after it cost time in proportion (Textual checks the whole text at each), 500 keys 5 s.
+A paste that would make a field longer is not taken."""
+
 
 @dataclass(frozen=True)
 class Field(Generic[T]):
@@ -72,7 +77,8 @@ class Prompt(Dialog[tuple[Any, ...] | None]):
             box.border_title = self._title
             for field in self._fields:
                 yield Label(field.label)
-                yield _Input(field.text, suggester=field.suggester, restrict=PRINTABLE)
+                yield _Input(field.text, suggester=field.suggester, restrict=PRINTABLE,
+                             max_length=LONGEST)
             with Horizontal(classes="dialog-buttons"):
                 yield Button(self._accept, variant="primary", id="accept")
                 yield Button("Cancel (esc)", id="cancel")

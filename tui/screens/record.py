@@ -23,7 +23,7 @@ from biceps.engine.names import printable
 from biceps.engine.scene import Scene
 from biceps.engine.sweep import flexion_range
 from biceps.tui.parse import parse_number, parse_path
-from biceps.tui.screens.prompt import PRINTABLE, Field, Prompt
+from biceps.tui.screens.prompt import LONGEST, PRINTABLE, Field, Prompt
 from biceps.tui.suggest import PathSuggester
 from biceps.tui.widgets.recorder import Recording
 
@@ -88,7 +88,7 @@ class RecordPrompt(Prompt):
                 for field in self._fields:
                     yield Label(field.label)
                     yield Input(field.text, suggester=field.suggester, compact=True,
-                                restrict=PRINTABLE)
+                                restrict=PRINTABLE, max_length=LONGEST)
             yield Label(f"As {', '.join(ANIMATION_FORMATS)}; MP4 needs biceps[video].",
                         classes="record-note", markup=False)
             with Horizontal(classes="dialog-buttons"):
