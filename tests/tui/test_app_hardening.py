@@ -39,6 +39,18 @@ def test_the_terminal_is_read_leniently(data, keys):
     assert [event.key for event in parsed][:-1] == keys  # the x after shows it is all read
 
 
+@pytest.mark.parametrize("cut", range(0, 40, 3))
+def test_a_paste_holding_escapes_is_pasted_not_typed(cut):
+    # Textual's parser took an escape in a paste for a sequence, and typed what followed:
+    # "/" subdivided the muscle, "[" rolled the model. Read in two parts, cut anywhere.
+    data = b"\x1b[200~/\x1b[/[[x\x1b\x1b[20/\x1b]52;c;eA==\x07\x1b[201~c"
+    decode = decode_leniently()
+    parsed = list(LenientParser().feed(decode(data[:cut]) + decode(data[cut:])))
+    assert [type(event).__name__ for event in parsed] == ["Paste", "Key"]
+    assert parsed[0].text == "/\ufffd[/[[x\ufffd\ufffd[20/\ufffd]52;c;eA==\x07"
+    assert parsed[1].key == "c"
+
+
 async def _burst(session, *keys: str) -> None:
     """Send ``keys`` at once, as a terminal does when they come together, then wait."""
     for key in keys:
