@@ -1,15 +1,19 @@
 """The real app in a pseudo-terminal, given what it must survive: bytes that are not UTF-8,
-a file named like an escape sequence, and an error of its own that gets through."""
+a file named like an escape sequence, the keys a terminal turns into signals, and an error
+of its own that gets through."""
 
 from __future__ import annotations
 
 import shutil
+import signal
 import sys
 import textwrap
+import time
 from pathlib import Path
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from pty_app import UPPER_HALF, converse
+from storm import RawTerminal, quit_app, wait_for
 
 HELP_TITLE = b"keys and mouse"
 
@@ -65,3 +69,42 @@ def test_an_error_that_gets_through_offers_to_save_and_ends_with_status_1(config
     assert b"biceps: stopped on an error it did not expect" in run.output
     assert run.exit_code == 1
     assert load_config(config_path).arm.length == 32.9  # the edit was saved
+
+
+def _ignores(pid: int, number: int) -> bool:
+    """Whether process ``pid`` ignores signal ``number`` (its SigIgn mask in /proc)."""
+    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+        if line.startswith("SigIgn:"):
+            return bool(int(line.split()[1], 16) >> (number - 1) & 1)
+    return False
+
+
+def test_ctrl_backslash_and_ctrl_z_neither_end_nor_stop_the_app(config_path):
+    # In its controlling terminal, as a shell starts it. While it loads, the terminal is in
+    # its own mode and turns ctrl+\ into SIGQUIT (a core dump) and ctrl+z into SIGTSTP (a
+    # stop, the app half started): both ignored from the moment the command line runs.
+    # Once Textual has the terminal they are keys (ctrl+z undo, ctrl+\ nothing).
+    before = config_path.read_bytes()
+    terminal = RawTerminal(_app(config_path), config_path.parent, (100, 30))
+    try:
+        pid = terminal.process.pid
+        deadline = time.monotonic() + 120
+        while not (_ignores(pid, signal.SIGQUIT) and _ignores(pid, signal.SIGTSTP)):
+            assert terminal.running() and time.monotonic() < deadline
+            time.sleep(0.005)
+        terminal.type(b"\x1c\x1a")  # before its first picture, most likely: signals
+        assert wait_for(terminal, "\u2580", 120.0)
+        terminal.type(b"\x1c\x1a")  # keys
+        time.sleep(1.0)
+        assert terminal.running()
+        assert _state(pid) != "T"  # not stopped
+        assert quit_app(terminal, (100, 30)) is not None
+        assert terminal.exit_status() == 0
+    finally:
+        terminal.close()
+    assert config_path.read_bytes() == before
+
+
+def _state(pid: int) -> str:
+    """A process's state letter (R, S, T for stopped, ...)."""
+    return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
