@@ -4,7 +4,7 @@ from importlib.resources import files
 
 import pytest
 from textual.binding import Binding
-from textual.widgets import Static
+from textual.widgets import RichLog, Static
 
 from biceps.engine.config import rgb
 from biceps.engine.scene import SceneRenderer
@@ -76,6 +76,20 @@ async def test_help_opens_and_closes(biceps, key):
         assert isinstance(session.app.screen, HelpScreen)
         await session.pilot.press("escape")
         assert isinstance(session.app.screen, MainScreen)
+
+
+@pytest.mark.parametrize("theme", ["ansi-dark", "ansi-light"])
+async def test_help_is_written_in_a_theme_of_ansi_colours(biceps, theme):
+    # Their accents, "ansi_green" and "ansi_magenta", are no colours to Rich: help with such
+    # a theme on (a storm's theme palette chose one) ended the app (StyleSyntaxError).
+    async with biceps() as session:
+        app = session.app
+        app.theme = theme
+        await session.pilot.press("question_mark")
+        await session.settle()
+        assert isinstance(app.screen, HelpScreen)
+        assert app.screen.query_one(RichLog).lines  # written
+        assert app.failure is None
 
 
 def _bindings() -> list[Binding]:

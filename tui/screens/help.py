@@ -10,9 +10,11 @@ from __future__ import annotations
 from importlib.resources import files
 
 from rich.markdown import Markdown
+from rich.style import Style
 from rich.theme import Theme
 from textual.app import ComposeResult
 from textual.binding import Binding
+from textual.color import Color
 from textual.widgets import RichLog
 
 from biceps.tui.screens.once import Dialog
@@ -35,8 +37,12 @@ class HelpScreen(Dialog[None]):
     def _write(self) -> None:
         # Headings in the theme's accent, as Textual's own Markdown has them, rather than
         # Rich's magenta: a terminal's magenta may be the muscle's red.
-        accent = self.app.current_theme.accent or self.app.current_theme.primary
-        headings = Theme({f"markdown.h{level}": f"bold {accent}" for level in (1, 2, 3)})
+        # Read as Textual reads it: the ansi themes' accents ("ansi_green") are no colours
+        # to Rich.
+        theme = self.app.current_theme
+        accent = Color.parse(theme.accent or theme.primary).rich_color
+        headings = Theme({f"markdown.h{level}": Style(bold=True, color=accent)
+                          for level in (1, 2, 3)})
         logs = self.query(RichLog)
         if not logs:  # closed before it was laid out: ? then escape, at once
             return
