@@ -192,10 +192,16 @@ class TmuxTerminal(Terminal):
                        env={**os.environ, "TERM": "xterm-256color"})
 
     def type(self, data: bytes) -> None:
-        for start in range(0, len(data), 16_384):  # an argument a byte: keep within ARG_MAX
+        if len(data) <= 256:  # as keys, a byte each
             subprocess.run([*self._tmux, "send-keys", "-t", "storm", "-H",
-                            *(f"{byte:02x}" for byte in data[start:start + 16_384])],
-                           capture_output=True)
+                            *(f"{byte:02x}" for byte in data)], capture_output=True)
+            return
+        # More at once (a long paste among them) as a buffer, its bytes as they are (-r):
+        # a byte each, send-keys takes minutes over 80,000.
+        subprocess.run([*self._tmux, "load-buffer", "-b", "storm", "-"], input=data,
+                       capture_output=True)
+        subprocess.run([*self._tmux, "paste-buffer", "-d", "-r", "-b", "storm", "-t", "storm"],
+                       capture_output=True)
 
     def resize(self, columns: int, rows: int) -> None:
         subprocess.run([*self._tmux, "resize-window", "-t", "storm", "-x", str(columns), "-y",
