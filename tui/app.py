@@ -139,13 +139,14 @@ class BicepsApp(App[None]):
         Binding("ctrl+z", "undo", "Undo", show=False),
         Binding("ctrl+y", "redo", "Redo", show=False),
         Binding("ctrl+r", "revert", "Revert to the saved file", show=False),
-        Binding("e", "export", "Export"),
-        Binding("p", "toggle_plots", "Plots on or off", show=False),
-        Binding("v", "record", "Record the flex cycle", show=False),
+        # Shown in the footer in a word, and by their tooltips in the palette (commands.py).
         Binding("ctrl+s", "save", "Save"),
+        Binding("e", "export", "Export", tooltip="Export a PNG"),
+        Binding("p", "toggle_plots", "Plots", tooltip="Plots on or off"),
+        Binding("v", "record", "Record", tooltip="Record the flex cycle"),
         Binding("ctrl+d", "save_as", "Save as", show=False),
         Binding("ctrl+o", "open", "Open", show=False),
-        Binding("question_mark,f1", "help", "Help"),
+        Binding("question_mark,f1", "help", "Help", tooltip="Help: every key"),
         Binding("q", "quit", "Quit"),
         # Quits from anywhere, a dialog too: a priority binding (see action_quit_in_turn).
         Binding("ctrl+q", "quit_in_turn", show=False, priority=True),

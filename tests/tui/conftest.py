@@ -15,6 +15,11 @@ from biceps.tui.app import BicepsApp
 from biceps.tui.widgets.viewport import Viewport
 
 
+def screen_rows(app: BicepsApp) -> list[str]:
+    """The text of every row of the screen in front, as the terminal shows it."""
+    return [strip.text for strip in app.screen._compositor.render_strips()]
+
+
 @dataclass
 class Session:
     """A running app, the pilot driving it and every notification it has shown."""

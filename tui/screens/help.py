@@ -37,5 +37,8 @@ class HelpScreen(Dialog[None]):
         # Rich's magenta: a terminal's magenta may be the muscle's red.
         accent = self.app.current_theme.accent or self.app.current_theme.primary
         headings = Theme({f"markdown.h{level}": f"bold {accent}" for level in (1, 2, 3)})
+        log = self.query_one(RichLog)
         with self.app.console.use_theme(headings):
-            self.query_one(RichLog).write(Markdown(HELP))
+            # As wide as the log's room beside its scrollbar, which RichLog would widen to
+            # its min_width, 78, and cut off in a terminal of 80 columns.
+            log.write(Markdown(HELP), width=log.scrollable_content_region.width)

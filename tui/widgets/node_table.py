@@ -32,10 +32,10 @@ class NodeTable(ScrollView, can_focus=True):
     """The nodes of a muscle, a row each under a header that stays; the cursor picks one."""
 
     BINDINGS = [
-        Binding("enter", "edit_node", "Edit node"),
-        Binding("n,insert", "insert_node", "Insert after"),
-        Binding("delete,backspace", "delete_node", "Delete"),
-        Binding("slash", "subdivide", "Subdivide all"),
+        Binding("enter", "edit_node", "Edit", tooltip="Edit the node"),
+        Binding("n,insert", "insert_node", "Insert", tooltip="Insert a node after this one"),
+        Binding("delete,backspace", "delete_node", "Delete", tooltip="Delete the node"),
+        Binding("slash", "subdivide", "Subdivide", tooltip="Subdivide every segment"),
         Binding("up", "move(-1)", "Previous node", show=False),
         Binding("down", "move(1)", "Next node", show=False),
         Binding("pageup", "page(-1)", "Page up", show=False),
