@@ -69,3 +69,13 @@ async def test_a_wide_footer_has_the_plots_and_the_recording_too(biceps):
         await _footer_settled(session)
         shown = {key.action for key in _footer_keys(session)}
         assert {"toggle_plots", "record", "export", "save", "help", "quit"} <= shown
+
+
+async def test_the_help_opens_in_the_ansi_theme(biceps):
+    # Its accent is Textual's ansi_green, which Rich does not know by that name.
+    async with biceps() as session:
+        session.app.theme = "ansi-dark"
+        await session.pilot.press("question_mark")
+        await session.pilot.pause(0.2)
+        assert session.app.screen.query_one(RichLog).lines
+        assert session.app.failure is None

@@ -90,6 +90,6 @@ def _width(widget: Widget) -> int:
 
 def _action(widget: Widget) -> str:
     """The name of the action of a footer's key, or of a group's first key; else ''."""
-    if isinstance(widget, KeyGroup):
-        widget = widget.query_one(FooterKey)
+    if isinstance(widget, KeyGroup):  # (its keys may not be mounted yet)
+        widget = next(iter(widget.query(FooterKey)), None)
     return widget.action.split("(", 1)[0] if isinstance(widget, FooterKey) else ""

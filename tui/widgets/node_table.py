@@ -18,7 +18,7 @@ from textual.reactive import reactive
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
-from biceps.engine.bounds import GROWTH, RADIUS, Limits
+from biceps.engine.bounds import GROWTH, NODES, RADIUS, Limits
 from biceps.engine.muscle import Muscle
 from biceps.tui.changes import with_node
 from biceps.tui.parse import parse_number
@@ -219,6 +219,11 @@ class NodeTable(ScrollView, can_focus=True):
         index = self.cursor_row
         self._request(lambda current: current.with_node_inserted(index),
                       f"a node inserted after node {index + 1}")
+        # The cursor on the new node at once, so that the keys typed next (delete) act on
+        # it: they are handled before the muscle with it comes back to the table. A node
+        # goes between two others, so its row is one the table has now.
+        if index < self.row_count - 1 and self.row_count < NODES:
+            self.cursor_row = index + 1
 
     def action_delete_node(self) -> None:
         index = self.cursor_row
