@@ -298,16 +298,28 @@ class SceneRenderer:
         self._mesh: tuple[Mesh, np.ndarray] | None = None
         self._outline: np.ndarray | None = None
 
-    def render(self, scene: Scene, width: int, height: int) -> np.ndarray:
-        """The picture of ``scene``: (height, width, 3) uint8, valid until the next call."""
+    def render(self, scene: Scene, width: int, height: int,
+               framed: np.ndarray | None = None) -> np.ndarray:
+        """The picture of ``scene``: (height, width, 3) uint8, valid until the next call.
+
+        ``framed``: the points (k, 3), world space at rest, the camera fits to the picture
+        (and the view turns about the middle of); the scene's own `outline` if None. A
+        cycle passes the outlines of all its poses, so that every frame has one camera.
+        """
         mesh, albedo = self._mesh_of(scene)
-        camera, model = view_camera(scene.view, self._outline, width / height)
+        framed = self._outline if framed is None else framed
+        camera, model = view_camera(scene.view, framed, width / height)
         light = zoomed_light(scene.light, scene.view.scale, camera)
         return self._renderer.render(
             mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
             light, width, height, shading=scene.render.shading,
             ssaa=supersampling(scene.render, height), background=rgb(scene.render.background),
         )  # fmt: skip
+
+    def outline(self, scene: Scene) -> np.ndarray:
+        """The `outline` (k, 3) of ``scene``'s mesh, world space at rest."""
+        self._mesh_of(scene)
+        return self._outline
 
     def _mesh_of(self, scene: Scene) -> tuple[Mesh, np.ndarray]:
         # Turning, moving and lighting leave the mesh as it was: rebuild it only when the
