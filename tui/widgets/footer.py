@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from typing import Iterable, Sequence
 
+from textual.events import Resize
 from textual.widget import Widget
 from textual.widgets import Footer
 from textual.widgets._footer import FooterKey, FooterLabel, KeyGroup  # not exported by 8.x
@@ -32,10 +33,14 @@ class FittedFooter(Footer):
     def __init__(self, kept_longest: Sequence[str], *, id: str | None = None) -> None:
         super().__init__(id=id, compact=True)
         self._rank = {action: rank for rank, action in enumerate(kept_longest)}
+        self._laid_out_for = 0  # the width the keys were last laid out and fitted for
 
-    def on_resize(self) -> None:
-        # Wider, a key dropped may fit again: lay them all out anew, then drop.
-        self.call_after_refresh(self.recompose)
+    def on_resize(self, event: Resize) -> None:
+        # Wider, a key dropped may fit again: lay them all out anew, then drop. Only for a
+        # new width: Textual sends Resize for a new virtual size too, which each drop makes.
+        if event.size.width != self._laid_out_for:
+            self._laid_out_for = event.size.width
+            self.call_after_refresh(self.recompose)
 
     async def recompose(self) -> None:
         # (Textual's footer recomposes whenever the keys that apply change: the focus moves)
