@@ -92,7 +92,7 @@ async def test_bad_values_are_refused_one_by_one_until_a_good_one_is_typed(bicep
             radius_box.value, growth_box.value = radius, growth
             await session.pilot.press("enter")
             assert isinstance(session.app.screen, Prompt)  # still open, the text there to fix
-            assert complaint in session.warnings[-1]
+            assert complaint in session.app.screen.error
             assert session.app.scene is before
         radius_box.value, growth_box.value = "2.5", "2.05"
         await session.pilot.press("enter")
@@ -200,7 +200,7 @@ async def test_a_value_the_model_cannot_draw_is_refused_saying_what_it_takes(
         before = session.app.scene
         await _edit(session, 8, radius=radius, growth=growth)
         assert isinstance(session.app.screen, Prompt)
-        assert complaint in session.warnings[-1]
+        assert complaint in session.app.screen.error
         assert session.app.scene is before
 
 

@@ -61,3 +61,20 @@ def test_a_dialog_stays_over_the_picture_as_it_turns(snap_compare, config):
         await _picture_drawn(pilot)
 
     assert snap_compare(BicepsApp(config), terminal_size=(100, 30), run_before=prompt_then_turn)
+
+
+def test_help_screen_at_80_by_24(snap_compare, config):
+    async def open_help(pilot: Pilot) -> None:
+        await _picture_drawn(pilot)
+        await pilot.press("question_mark")
+
+    assert snap_compare(BicepsApp(config), terminal_size=(80, 24), run_before=open_help)
+
+
+def test_the_footer_at_80_columns_with_the_node_table_focused(snap_compare, config):
+    async def focus_the_table(pilot: Pilot) -> None:
+        await pilot.press("h", "tab")
+        await _picture_drawn(pilot)
+        await pilot.pause(0.3)  # the footer laid out, and fitted
+
+    assert snap_compare(BicepsApp(config), terminal_size=(80, 24), run_before=focus_the_table)

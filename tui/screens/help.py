@@ -10,9 +10,11 @@ from __future__ import annotations
 from importlib.resources import files
 
 from rich.markdown import Markdown
+from rich.style import Style
 from rich.theme import Theme
 from textual.app import ComposeResult
 from textual.binding import Binding
+from textual.color import Color
 from textual.widgets import RichLog
 
 from biceps.tui.screens.once import Dialog
@@ -35,10 +37,15 @@ class HelpScreen(Dialog[None]):
     def _write(self) -> None:
         # Headings in the theme's accent, as Textual's own Markdown has them, rather than
         # Rich's magenta: a terminal's magenta may be the muscle's red.
-        accent = self.app.current_theme.accent or self.app.current_theme.primary
-        headings = Theme({f"markdown.h{level}": f"bold {accent}" for level in (1, 2, 3)})
+        # Read by Textual: the ANSI theme's colours (ansi_green) are not Rich's names.
+        accent = Color.parse(self.app.current_theme.accent or self.app.current_theme.primary)
+        heading = Style(bold=True, color=accent.rich_color)
+        headings = Theme({f"markdown.h{level}": heading for level in (1, 2, 3)})
         logs = self.query(RichLog)
-        if not logs:  # closed before it was laid out: ? then escape, at once
-            return
+        if not logs:
+            return  # closed again before it was laid out (? then escape at once)
+        log = logs.first()
         with self.app.console.use_theme(headings):
-            logs.first().write(Markdown(HELP))
+            # As wide as the log's room beside its scrollbar, which RichLog would widen to
+            # its min_width, 78, and cut off in a terminal of 80 columns.
+            log.write(Markdown(HELP), width=log.scrollable_content_region.width)
