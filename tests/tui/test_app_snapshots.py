@@ -6,6 +6,8 @@ result (``tests/tui/__snapshots__``) before accepting it.
 
 from textual.pilot import Pilot
 
+from biceps.configs import FOLDER
+from biceps.engine.config import load_config
 from biceps.tui.app import BicepsApp
 from biceps.tui.widgets.viewport import Viewport
 
@@ -78,3 +80,13 @@ def test_the_footer_at_80_columns_with_the_node_table_focused(snap_compare, conf
         await pilot.pause(0.3)  # the footer laid out, and fitted
 
     assert snap_compare(BicepsApp(config), terminal_size=(80, 24), run_before=focus_the_table)
+
+
+def test_a_picked_muscle_and_node_marked_in_the_picture(snap_compare):
+    async def pick(pilot: Pilot) -> None:
+        await _picture_drawn(pilot)
+        await pilot.press("tab", "down", "down", "down", "down", "down")
+        await _picture_drawn(pilot)
+
+    elbow = load_config(FOLDER / "elbow.toml")
+    assert snap_compare(BicepsApp(elbow), terminal_size=(100, 30), run_before=pick)
