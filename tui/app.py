@@ -183,7 +183,7 @@ class BicepsApp(App[None]):
             scene = self._saved
         else:
             self._adopt(rescue.config, rescue.saved)
-            scene = rescue.scene
+            scene = replace(rescue.scene, marked=True)
         self.set_reactive(BicepsApp.scene, scene)
         self.set_reactive(BicepsApp.unsaved, has_unsaved_edits(scene, self._saved))
         self._export_size = "1920x1080"
@@ -429,6 +429,11 @@ class BicepsApp(App[None]):
     def _zoom(self, message: Viewport.Zoomed) -> None:
         self.action_zoom(message.steps)
 
+    @on(NodeTable.NodePicked)
+    def _ring_node(self, message: NodeTable.NodePicked) -> None:
+        if message.node != self.scene.picked_node:
+            self.scene = self.scene.with_picked_node(message.node)
+
     @on(NodeTable.ChangeRequested)
     def _edit_muscle(self, message: NodeTable.ChangeRequested) -> None:
         arm, index = self.scene.arm, self.scene.selected
@@ -526,7 +531,7 @@ class BicepsApp(App[None]):
                 self._last_recording = replace(self._last_recording,
                                                path=Path(f"{stem}-flex{suffix}"))
         self.config = config
-        self._saved = saved
+        self._saved = replace(saved, marked=True)  # the app's pictures mark the pick
         self.sub_title = printable(config.path.name)
 
     def _config_file_field(self, path: Path, suggester: Suggester | None = None) -> Field:
@@ -601,7 +606,7 @@ class BicepsApp(App[None]):
             return
         path, (width, height) = answer
         self._export_path, self._export_size = str(path), f"{width}x{height}"
-        self._write_picture(self.scene, path, width, height)
+        self._write_picture(self.scene.unmarked(), path, width, height)
 
     def _check_export(self, path: Path, width: int, height: int) -> None:
         check_writable(path, ".png", read=self.config.path)
@@ -643,7 +648,7 @@ class BicepsApp(App[None]):
         if answer is None:
             return
         recording = self._last_recording = as_recording(*answer)  # if asked again
-        recorder.record(self.scene, recording)
+        recorder.record(self.scene.unmarked(), recording)
 
     def action_quit(self) -> None:
         self._quit()

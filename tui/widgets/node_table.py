@@ -94,6 +94,14 @@ class NodeTable(ScrollView, can_focus=True):
             self.what = what
             self.undoable_note = undoable_note
 
+    class NodePicked(Message):
+        """The node the table picks for the picture to ring: ``node`` (0-based), or None
+        while the table has not the focus (the picture marks nothing then)."""
+
+        def __init__(self, node: int | None) -> None:
+            super().__init__()
+            self.node = node
+
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id)
         self._muscle: Muscle | None = None
@@ -134,6 +142,14 @@ class NodeTable(ScrollView, can_focus=True):
     def watch_cursor_row(self, old: int, new: int) -> None:
         self._scroll_to_cursor()
         self.refresh()
+        if self.has_focus:
+            self.post_message(self.NodePicked(new))
+
+    def on_focus(self) -> None:
+        self.post_message(self.NodePicked(self.cursor_row))
+
+    def on_blur(self) -> None:
+        self.post_message(self.NodePicked(None))
 
     def _scroll_to_cursor(self) -> None:
         rows = max(self.scrollable_content_region.height - 1, 1)  # under the header
