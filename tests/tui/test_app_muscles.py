@@ -13,6 +13,7 @@ from biceps.configs import FOLDER
 from biceps.engine.config import load_config
 from biceps.engine.scene import SceneRenderer
 from biceps.tui.commands import KeyCommands
+from biceps.tui.screens.prompt import Prompt
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.stats import Stats
 from biceps.tui.widgets.viewport import Viewport
@@ -189,6 +190,12 @@ async def test_the_picture_marks_the_picked_muscle_and_rings_the_node_the_table_
         await pilot.press("end")
         await session.settle()
         assert app.scene.picked_node == app.scene.arm.muscles[1].node_count - 1
+        await pilot.press("enter")  # the node's own dialog keeps it ringed
+        await session.settle()
+        assert isinstance(app.screen, Prompt)
+        assert app.scene.picked_node == app.scene.arm.muscles[1].node_count - 1
+        await pilot.press("escape")
+        await session.settle()
         app.screen.query_one(Viewport).focus()  # back to turning the model
         await session.settle()
         assert app.scene.picked_node is None

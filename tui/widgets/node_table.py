@@ -149,7 +149,9 @@ class NodeTable(ScrollView, can_focus=True):
         self.post_message(self.NodePicked(self.cursor_row))
 
     def on_blur(self) -> None:
-        self.post_message(self.NodePicked(None))
+        # A dialog over the screen (the node's own, opened with enter) keeps the ring.
+        if self.screen is self.app.screen:
+            self.post_message(self.NodePicked(None))
 
     def _scroll_to_cursor(self) -> None:
         rows = max(self.scrollable_content_region.height - 1, 1)  # under the header
