@@ -460,10 +460,11 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
         prepare_kernels(scene.render.shading, supersampling(scene.render, height))
     if printed == "ansi":
         from biceps.engine.config import rgb
-        from biceps.tui.ansi import print_picture  # rich, only for this mode
+        from biceps.tui.ansi import print_picture
+        from biceps.tui.detect import colour_system
 
         print_picture(lambda width, height: SceneRenderer().render(scene, width, height),
-                      rgb(scene.render.background), size, colors)
+                      rgb(scene.render.background), size, colour_system(colors))
         return
     if printed is not None:
         from biceps.tui.printed import print_image

@@ -20,7 +20,7 @@ import numpy as np
 from PIL import Image
 
 from biceps.engine.jit import helper, ngjit
-from biceps.tui.sgr import put_number  # decimal digits into a byte buffer, as SGR has them
+from biceps.tui.writing import put_number
 
 MAX_COLOURS = 256
 SIXEL = 63  # "?", the character of a column with no pixel set; "?" + bits for the others
