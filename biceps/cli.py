@@ -32,7 +32,7 @@ from biceps.configs import (DEFAULT as DEFAULT_CONFIG, FOLDER as BUNDLED, file_o
 from biceps.engine.bounds import COORDINATE, SCALE, OutOfBounds, finite
 from biceps.engine.errors import BicepsError
 from biceps.engine.names import printable
-from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Graphics, drawing_threads
+from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Colors, Graphics, drawing_threads
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
@@ -62,6 +62,7 @@ FINITE = _FiniteFloat()
 
 USAGE_ERROR = 2
 GRAPHICS = list(get_args(Graphics))
+COLORS = list(get_args(Colors))
 
 
 class _AppByDefault(click.Group):
@@ -173,10 +174,11 @@ def main() -> None:
 @config_argument
 @click.option(
     "--colors",
-    type=click.Choice(["auto", "truecolor", "256"]),
+    type=click.Choice(COLORS),
     default="auto",
     show_default=True,
-    help="Colour depth; auto honours TEXTUAL_COLOR_SYSTEM and COLORTERM.",
+    help="Colour depth; auto takes the config's render.colors, TEXTUAL_COLOR_SYSTEM, then "
+    "what the terminal answers (24-bit where it keeps a 24-bit colour), then COLORTERM.",
 )
 @click.option(
     "--fps",
@@ -224,13 +226,16 @@ def app(config: Path, colors: str, fps: float | None, graphics: str | None,
 @main.command(short_help="Say what this terminal can show, and what the app would use.")
 @click.option("--graphics", type=click.Choice(GRAPHICS), default="auto", show_default=True,
               help="The choice to explain, as the app would take it.")
-def doctor(graphics: str) -> None:
+@click.option("--colors", type=click.Choice(COLORS), default="auto", show_default=True,
+              help="The colours to explain, as the app would take them.")
+def doctor(graphics: str, colors: str) -> None:
     """Ask this terminal what it can show, and say what the app would use and why."""
-    from biceps.tui import detect
+    from biceps.tui import choose, detect
 
     answers, place = detect.ask(), detect.Place.here()
-    click.echo(f"biceps doctor: --graphics {graphics}")
-    click.echo(detect.report(graphics, answers, place, detect.choose(graphics, answers, place)))
+    click.echo(f"biceps doctor: --graphics {graphics} --colors {colors}")
+    click.echo(choose.report(graphics, answers, place, choose.choose(graphics, answers, place),
+                             choose.colours(colors, answers, place)))
 
 
 @main.command()
@@ -426,9 +431,9 @@ PNG_SIZE = (1920, 1080)
               help="Print it in the kitty graphics protocol.")
 @click.option("--sixel", "printed", flag_value="sixel", help="Print it as sixel.")
 @click.option("--iterm", "printed", flag_value="iterm", help="Print it as an iTerm2 image.")
-@click.option("--colors", type=click.Choice(["auto", "truecolor", "256"]), default="auto",
-              show_default=True,
-              help="With --ansi: the colour codes; auto asks the environment (COLORTERM, TERM).")
+@click.option("--colors", type=click.Choice(COLORS), default="auto", show_default=True,
+              help="With --ansi: the colour codes; auto asks the terminal, if it is one, and "
+              "the environment (COLORTERM).")
 @pose_options
 @view_options
 @_refusals_exit_2
@@ -460,11 +465,14 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
         prepare_kernels(scene.render.shading, supersampling(scene.render, height))
     if printed == "ansi":
         from biceps.engine.config import rgb
+        from biceps.tui import choose, detect
         from biceps.tui.ansi import print_picture
-        from biceps.tui.detect import colour_system
 
+        answers = detect.ask() if colors == "auto" and sys.stdout.isatty() else None
+        asked = scene.render.colors if colors == "auto" else colors
+        system = choose.colours(asked, answers, detect.Place.here()).system
         print_picture(lambda width, height: SceneRenderer().render(scene, width, height),
-                      rgb(scene.render.background), size, colour_system(colors))
+                      rgb(scene.render.background), size, system)
         return
     if printed is not None:
         from biceps.tui.printed import print_image

@@ -43,6 +43,7 @@ from biceps.engine.muscle import Muscle, VolumeMode
 from biceps.engine.names import printable
 from biceps.engine.settings import (
     COLOUR,
+    Colors,
     ColourBy,
     FIELD_OF_VIEW,
     Graphics,
@@ -250,6 +251,7 @@ class RenderTable(_Table):
     bone_colour: Colour = RenderSettings.bone_colour
     background: Colour = RenderSettings.background
     graphics: Graphics = RenderSettings.graphics
+    colors: Colors = RenderSettings.colors
     colour_by: ColourBy = RenderSettings.colour_by
 
     @classmethod

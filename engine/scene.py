@@ -294,15 +294,19 @@ class SceneRenderer:
         self._mesh: tuple[Mesh, np.ndarray] | None = None
         self._outline: np.ndarray | None = None
 
-    def render(self, scene: Scene, width: int, height: int) -> np.ndarray:
-        """The picture of ``scene``: (height, width, 3) uint8, valid until the next call."""
+    def render(self, scene: Scene, width: int, height: int,
+               pixel_aspect: float = 1.0) -> np.ndarray:
+        """The picture of ``scene``: (height, width, 3) uint8, valid until the next call;
+        its pixels shown ``pixel_aspect`` as wide as they are tall."""
         mesh, albedo = self._mesh_of(scene)
-        camera, model = view_camera(scene.view, self._outline, width / height)
+        aspect = width * pixel_aspect / height
+        camera, model = view_camera(scene.view, self._outline, aspect)
         light = zoomed_light(scene.light, scene.view.scale, camera)
         return self._renderer.render(
             mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
             light, width, height, shading=scene.render.shading,
             ssaa=supersampling(scene.render, height), background=rgb(scene.render.background),
+            pixel_aspect=pixel_aspect,
         )  # fmt: skip
 
     def _mesh_of(self, scene: Scene) -> tuple[Mesh, np.ndarray]:

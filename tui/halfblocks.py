@@ -66,7 +66,7 @@ class TextCells:
         ``color_system``: the terminal's, as a :class:`~rich.console.Console` names it, for
         which each line also carries its text (``tui/prerendered.py``); ``terminal_cell``:
         the terminal's cell in pixels, whose shape makes that of a pixel."""
-        self.shape = shape
+        self.shape, self._terminal_cell = shape, terminal_cell
         self.cell = Size(shape.columns, shape.rows)
         width, height = terminal_cell
         self.aspect = (width / shape.columns) / (height / shape.rows)
@@ -82,6 +82,12 @@ class TextCells:
         self._codes = _Made(lambda cell: codes(self._styles[cell], color_system))
         # The lines' text in 24-bit colour comes from a kernel, the rest from the codes.
         self._written = colour is rgb_colour and color_system == "truecolor"
+
+    def recoloured(self, colour: Callable[[int], Color] = rgb_colour,
+                   color_system: str = "truecolor") -> TextCells:
+        """A new encoder of the same cells, writing colours with ``colour`` for a terminal
+        of ``color_system`` (see __init__)."""
+        return TextCells(self.shape, colour, color_system, self._terminal_cell)
 
     def encode(self, frame: np.ndarray) -> Picture:
         """The lines of ``frame`` ((rows h, columns w, 3) uint8): h lines of w cells."""
@@ -140,6 +146,10 @@ class HalfBlocks(TextCells):
     def __init__(self, colour: Callable[[int], Color] = rgb_colour,
                  color_system: str = "truecolor") -> None:
         super().__init__(HALF_BLOCKS, colour, color_system)
+
+    def recoloured(self, colour: Callable[[int], Color] = rgb_colour,
+                   color_system: str = "truecolor") -> HalfBlocks:
+        return HalfBlocks(colour, color_system)
 
 
 def _spans(changed: np.ndarray) -> list[tuple[int, int]]:

@@ -17,7 +17,8 @@ from biceps.cli import main
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.scene import Scene, SceneRenderer
 from biceps.tui import detect
-from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.cells import SEXTANTS
+from biceps.tui.halfblocks import HalfBlocks, TextCells
 from biceps.tui.pixels import KittyGraphics, Sixel
 
 XTERM = detect.parse(b"\x1bP>|XTerm(379)\x1b\\\x1b[?1;0;256S\x1b[?63;4c", 0.002,
@@ -99,10 +100,13 @@ def test_half_blocks_by_default_with_a_word_about_real_pixels(started):
     assert "can show real pixels (sixel): start biceps with --graphics sixel" in started["notice"]
 
 
-def test_half_blocks_asked_on_the_command_line_ask_the_terminal_nothing(started):
-    assert run("app", DEFAULT_CONFIG, "--graphics", "halfblocks").exit_code == 0
+def test_half_blocks_and_colours_asked_on_the_command_line_ask_the_terminal_nothing(started):
+    assert run("app", DEFAULT_CONFIG, "--graphics", "halfblocks", "--colors", "256").exit_code == 0
     assert isinstance(started["encoder"], HalfBlocks) and started["asked"] == 0
     assert started["notice"] is None
+    # The colours left to the terminal, it is asked about them.
+    assert run("app", DEFAULT_CONFIG, "--graphics", "halfblocks").exit_code == 0
+    assert started["asked"] == 1
 
 
 def test_the_config_may_choose_real_pixels(started, tmp_path):
@@ -126,12 +130,14 @@ def test_a_protocol_the_place_cannot_take_falls_back_and_says_why(started, monke
     assert "Half-blocks: kitty was asked, but inside GNU screen" in started["notice"]
 
 
-def test_auto_says_why_it_came_to_half_blocks(started, monkeypatch):
+def test_auto_says_why_it_came_to_text(started, monkeypatch):
     monkeypatch.setattr(detect, "ask", lambda: detect.parse(b"\x1b[?1;2c", 0.01))  # tmux's
     monkeypatch.setattr(detect.Place, "here", classmethod(
         lambda cls: detect.Place(multiplexer="tmux", outer_terminal="xterm-kitty")))
     assert run("app", DEFAULT_CONFIG, "--graphics", "auto").exit_code == 0
-    assert isinstance(started["encoder"], HalfBlocks)
+    # No images through tmux, but kitty draws sextants itself.
+    assert isinstance(started["encoder"], TextCells) and started["encoder"].shape == SEXTANTS
+    assert started["notice"].startswith("Sextants: auto: inside tmux in xterm-kitty")
     assert "tmux set -g allow-passthrough on" in started["notice"]
 
 

@@ -49,7 +49,7 @@ from textual.widget import Widget
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer, supersampling
 from biceps.tui.encoder import Picture, PictureEncoder
-from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.halfblocks import HalfBlocks, TextCells
 from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer
 from biceps.tui.prerendered import PrerenderedStrip, console_system
@@ -79,6 +79,7 @@ class _Request:
     scene: Scene
     width: int  # pixels
     height: int  # pixels
+    aspect: float  # a pixel's width over its height on the screen
 
 
 @dataclass(frozen=True)
@@ -134,15 +135,15 @@ class Viewport(Widget, can_focus=True):
         super().__init__(id=id)
         self._pacer = pacer
         encoder = HalfBlocks() if encoder is None else encoder
-        # Half-blocks in a 256-colour terminal: every frame mapped onto its palette as a
-        # whole (tui/palette.py), where Textual would map each colour on its own. The lines
-        # carry their text for this terminal's colours.
+        # Text in a 256-colour terminal: every frame mapped onto its palette as a whole
+        # (tui/palette.py), where Textual would map each colour on its own. The lines carry
+        # their text for this terminal's colours.
         self._palette: Palette256 | None = None
         system = console_system(self.app.console)
-        if isinstance(encoder, HalfBlocks) and system == "256":
-            self._palette, encoder = Palette256(), HalfBlocks(palette_colour, system)
-        elif isinstance(encoder, HalfBlocks) and system != "truecolor":
-            encoder = HalfBlocks(color_system=system)
+        if isinstance(encoder, TextCells) and system == "256":
+            self._palette, encoder = Palette256(), encoder.recoloured(palette_colour, system)
+        elif isinstance(encoder, TextCells) and system != "truecolor":
+            encoder = encoder.recoloured(color_system=system)
         self._encoder = encoder
         self._scene: Scene | None = None
         self._requests: LatestOnly[_Request] = LatestOnly()
@@ -223,9 +224,8 @@ class Viewport(Widget, can_focus=True):
         if self.up_to_date:
             self._progress_at = monotonic()
         self._requested += 1
-        self._requests.put(
-            _Request(self._requested, self._scene, width * cell.width, height * cell.height)
-        )
+        self._requests.put(_Request(self._requested, self._scene, width * cell.width,
+                                    height * cell.height, self._encoder.aspect))
         self._watch_progress()
 
     def _watch_progress(self) -> None:
@@ -263,7 +263,8 @@ class Viewport(Widget, can_focus=True):
         """The frame of ``request``, valid until ``renderer`` draws again, or the error
         that stopped it."""
         try:
-            frame = renderer.render(request.scene, request.width, request.height)
+            frame = renderer.render(request.scene, request.width, request.height,
+                                    request.aspect)
             if self._palette is not None:
                 frame = self._palette.mapped(frame, rgb(request.scene.render.background))
         except Exception as error:
@@ -546,7 +547,7 @@ class Viewport(Widget, can_focus=True):
         pan = event.button != 1 or event.ctrl or event.shift or event.meta
         # A cell is cell.width pixels across; the picture is rows * cell.height pixels tall.
         cell = self._encoder.cell
-        across = event.delta_x * cell.width / (rows * cell.height)
+        across = event.delta_x * cell.width * self._encoder.aspect / (rows * cell.height)
         self.post_message(self.Dragged(across, event.delta_y / rows, pan))
 
     def on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:
