@@ -4,6 +4,7 @@ latency, CPU, and the lag left behind on slow links, beside rich-pixels in a ``S
     .venv/bin/python benchmarks/tui_pty.py [--sizes 200x60,400x100] [--seconds 4]
                                            [--links 5,20] [--link-size 200x60] [--quick]
                                            [--config configs/elbow.toml]
+                                           [--graphics halfblocks,sextants]
 
 Each app runs in a pseudo-terminal of the given size, with TERM=xterm-256color and
 COLORTERM=truecolor. This script plays the terminal: it answers the synchronized-output
@@ -23,6 +24,10 @@ Phases, for each app and size:
 - flood: the key at 120 a second, faster than any frame rate, so that the frame rate is
   the pipeline's own; gives fps, bytes per frame (all bytes written over the phase, divided
   by frames) and CPU (the app process, all threads, in % of one core).
+
+``--graphics`` measures biceps once with each of the text encoders named (its
+``--graphics``), one after the other, beside the baseline: half-blocks, and the finer
+sextants or quadrants, whose bytes a frame are to be compared with the half-blocks'.
 
 Then, at one size, each emulated link (the pty read no faster than N Mbit/s): the key held
 at 30 a second, then released; the lag is the time from the last key to the end of the
@@ -315,8 +320,10 @@ def started(argv: list[str], columns: int, rows: int, start=Terminal.start) -> T
 # The apps
 
 
-def biceps_argv(config: Path) -> list[str]:
-    return [sys.executable, "-m", "biceps.cli", "app", str(config)]
+def biceps_argv(config: Path = CONFIG, graphics: str | None = None) -> list[str]:
+    """The app on ``config``, with ``--graphics graphics`` if given."""
+    return [sys.executable, "-m", "biceps.cli", "app", str(config),
+            *(["--graphics", graphics] if graphics else [])]
 
 
 def baseline_argv(config: Path) -> list[str]:
@@ -411,6 +418,9 @@ def main() -> None:
                         help="200x60 only, 2 s phases, 5 Mbit/s only")
     parser.add_argument("--config", type=Path, default=CONFIG,
                         help="the model both apps show (default configs/biceps.toml)")
+    parser.add_argument("--graphics", default="halfblocks",
+                        help="biceps's text encoders to measure, comma-separated: halfblocks, "
+                        "sextants, quadrants")
     parser.add_argument("--rich-pixels-app", action="store_true", help=argparse.SUPPRESS)
     arguments = parser.parse_args()
     if arguments.rich_pixels_app:
@@ -420,7 +430,9 @@ def main() -> None:
         arguments.sizes, arguments.seconds, arguments.links = "200x60", 2.0, "5"
     sizes = [tuple(map(int, size.split("x"))) for size in arguments.sizes.split(",")]
     link_size = tuple(map(int, arguments.link_size.split("x")))
-    apps = [("biceps", biceps_argv(arguments.config))]
+    apps = [("biceps" if graphics == "halfblocks" else graphics,
+             biceps_argv(arguments.config, graphics))
+            for graphics in arguments.graphics.split(",")]
     if not arguments.no_baseline:
         apps.append(("rich-pixels", baseline_argv(arguments.config)))
     print(f"model: {arguments.config}")

@@ -40,7 +40,7 @@ from biceps.engine.files import same_file
 from biceps.engine.names import printable
 from biceps.engine.scene import Scene, SceneRenderer
 from biceps.tui import detect
-from biceps.tui.choose import choose, colours, notice
+from biceps.tui.choose import TEXT, choose, colours, notice
 from biceps.tui.ahead import compile_ahead, lean_once_ready
 from biceps.tui.changes import (
     COARSE_STEP,
@@ -711,10 +711,11 @@ def _run(config: Config, colors: str, fps: float | None, compile_aside: bool,
     # Textual's apps take their colours from this constant as they are made (it read
     # TEXTUAL_COLOR_SYSTEM once, on import); run_app puts it back after, for a caller that
     # goes on (a test process) and should keep its own.
-    textual.constants.COLOR_SYSTEM = colours(colours_asked, answers, place).system
+    system = colours(colours_asked, answers, place).system
+    textual.constants.COLOR_SYSTEM = system
     encoder = encoder_for(choice, pixel_scale)
     if compile_aside:
-        compile_ahead(config, encoder)
+        compile_ahead(config, encoder, palette=system == "256" and choice.graphics in TEXT)
     app = BicepsApp(config, fps=fps, encoder=encoder, notice=notice(asked, choice))
     app.run()
     if app.failure is None:

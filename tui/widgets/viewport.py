@@ -10,6 +10,10 @@ image, for an encoder that sends one), and a new frame refreshes only the lines 
 changed (none, if the picture is the same). The captions on the border say how the picture
 on screen was made, so they change with it.
 
+Until the first frame comes on a first run (an empty numba cache, ``tui/ahead.py``), the
+picture's place says that the renderer is being prepared, with the parts done and the
+seconds so far; the keys work meanwhile.
+
 A frame is handed to the UI only when the :class:`~tui.pacing.Pacer` says the terminal has
 taken the last one; meanwhile the worker draws the next (the newest request), so that only
 its encoding is left to do once the terminal has answered (see `STALE_AFTER`).
@@ -36,6 +40,7 @@ from typing import Sequence
 import numpy as np
 from rich.color import Color
 from rich.console import Console
+from rich.segment import Segment
 from rich.style import Style
 from textual import events, work
 from textual.filter import ANSIToTruecolor, LineFilter
@@ -48,6 +53,7 @@ from textual.widget import Widget
 
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer, supersampling
+from biceps.tui.ahead import Preparation, preparing
 from biceps.tui.encoder import Picture, PictureEncoder
 from biceps.tui.halfblocks import HalfBlocks, TextCells
 from biceps.tui.latest_only import LatestOnly
@@ -57,12 +63,17 @@ from biceps.tui.palette import Palette256, background_colour
 from biceps.tui.palette import colour as palette_colour
 
 
+MESSAGE = Style(color="#b8b8b8")  # the first run's message, on the picture's background
 DRAW_TRIES = 8  # refreshes to wait for a frame to be written before pacing on regardless
 
 BUSY_AFTER = 0.3
 """Seconds without a new frame, while one is wanted, before the caption says the picture is
 being drawn: a first Phong frame compiles its kernels, a muscle of many nodes takes long."""
 BUSY_CAPTION = "drawing…"
+
+PREPARING_EVERY = 0.5
+"""Seconds between updates of a first run's message (``tui/ahead.py``), until the first
+picture comes: the parts of the compilation done, and the seconds it has taken so far."""
 
 STALE_AFTER = 2 / 60
 """Seconds after which a frame drawn ahead is drawn again if a newer scene is waiting by
@@ -166,6 +177,7 @@ class Viewport(Widget, can_focus=True):
         self._captioning: tuple[Region, bool] | None = None
         self._progress_at = 0.0  # when the last frame came, or the wait for one began
         self._progress_timer: Timer | None = None
+        self._preparing_timer: Timer | None = None
 
     @property
     def up_to_date(self) -> bool:
@@ -181,6 +193,14 @@ class Viewport(Widget, can_focus=True):
 
     def on_mount(self) -> None:
         self._render_frames()
+        if preparing() is not None:
+            self._preparing_timer = self.set_interval(PREPARING_EVERY, self._prepared_yet)
+
+    def _prepared_yet(self) -> None:
+        if self._strips and self._preparing_timer is not None:
+            self._preparing_timer.stop()
+            self._preparing_timer = None
+        self.refresh()  # the message's progress, or the picture that replaced it
 
     def on_unmount(self) -> None:
         self._requests.close()
@@ -524,6 +544,8 @@ class Viewport(Widget, can_focus=True):
         return self._line(y, self.size.width)
 
     def _line(self, y: int, width: int) -> Strip:
+        if not self._strips and (preparation := preparing()) is not None:
+            return self._preparing_line(preparation, y, width)
         if y >= len(self._strips):
             return Strip.blank(width, self._background)
         strip = self._strips[y]
@@ -531,6 +553,20 @@ class Viewport(Widget, can_focus=True):
             return strip
         # A frame of the old size, until the one for the new size arrives.
         return strip.crop_extend(0, width, self._background)
+
+    def _preparing_line(self, preparation: Preparation, y: int, width: int) -> Strip:
+        """Line ``y`` of a first run's message, in the middle of the picture's place."""
+        done, parts = preparation.parts()
+        compiling = " and ".join(preparation.compiling())
+        lines = ["Preparing the renderer: first run only",
+                 f"{done} of {parts} parts done · {monotonic() - preparation.started:.0f} s",
+                 f"compiling {compiling}" if compiling else "drawing the first picture",
+                 "the keys work meanwhile"]
+        index = y - (self.size.height - len(lines)) // 2
+        if not 0 <= index < len(lines):
+            return Strip.blank(width, self._background)
+        text = lines[index][:width].center(width)
+        return Strip([Segment(text, self._background + MESSAGE)], width)
 
     def on_mouse_down(self, event: events.MouseDown) -> None:
         self.capture_mouse()
