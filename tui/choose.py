@@ -147,8 +147,10 @@ def choose(asked: str, answers: Answers | None, place: Place) -> Choice:
         notes += (f"sixel has only {answers.colour_registers} colours here; xterm takes more "
                   "with -xrm 'XTerm*numColorRegisters: 256'",)
     limit = answers.sixel_limit
-    if found == "sixel" and limit is not None and answers.window is not None:
-        if limit[0] < answers.window[0] or limit[1] < answers.window[1]:
+    window = answers.window or (answers.size[2:] if answers.size and all(answers.size[2:])
+                                else None)
+    if found == "sixel" and limit is not None and window is not None:
+        if limit[0] < window[0] or limit[1] < window[1]:
             notes += (f"sixel images are at most {limit[0]}x{limit[1]} pixels here: the "
                       "picture is drawn that large at most, in the middle of its cells "
                       "(xterm takes larger with -xrm 'XTerm*maxGraphicSize: 4000x4000')",)

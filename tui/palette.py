@@ -13,12 +13,13 @@ none, a quarter, half, three quarters or all of the pixels take the second), the
 chosen in OKLab (Björn Ottosson, "A perceptual color space for image processing", 2020):
 the one whose mixture, in a share the matrix can show, is nearest to the colour, plus a
 penalty for how far the farther of the two is from it. That distance counts a difference of
-hue :data:`HUE_WEIGHT` times over (an entry with no hue, a grey, counts as a right angle
-away from a coloured target), so a red is mixed from reds, lighter and darker, and not from
-a grey and a magenta that average to it. Mixtures are taken in sRGB, as the picture is
-measured (both blurred alike, ``benchmarks/palette.py``). A pixel's pattern depends on its
-own colour and place alone, so a frame that changes in one place changes only there (error
-diffusion would change the rest of the row too), and a turning model does not shimmer.
+hue :data:`HUE_WEIGHT` times over (and a grey's loss of all the target's hue as one), so a
+red is mixed from reds, lighter and darker, and a bone's beige from beiges and greys, not
+from a magenta and an orange, or a pink and a yellow, that average to it. Mixtures are
+taken in sRGB, as the picture is measured (both blurred alike, ``benchmarks/palette.py``).
+A pixel's pattern depends on its own colour and place alone, so a frame that changes in one
+place changes only there (error diffusion would change the rest of the row too), and a
+turning model does not shimmer.
 
 Choosing a pair looks at every entry, so each choice is kept in a table of colours at
 :data:`TABLE_BITS` bits a channel, filled as colours are met; the share of the second entry
@@ -39,8 +40,8 @@ from biceps.engine.jit import helper, ngjit
 FIRST = 16  # the first entry after the system colours
 CUBE_LEVELS = (0, 95, 135, 175, 215, 255)  # xterm's cube, per channel
 
-HUE_WEIGHT = 2.5  # how much more a difference of hue counts than one of lightness or chroma
-SPREAD = 0.15  # the weight of the farther entry's distance in a pair's cost
+HUE_WEIGHT = 4.0  # how much more a difference of hue counts than one of lightness or chroma
+SPREAD = 0.25  # the weight of the farther entry's distance in a pair's cost
 CANDIDATES = 10  # the entries nearest a colour that its pair is chosen from
 GREY_CHROMA = 0.02  # OKLab chroma below which an entry has no hue to speak of
 SHARES = 4  # a 2 x 2 matrix shows the second entry in 0 to 4 of its pixels
@@ -108,12 +109,13 @@ def _distances(target, lab, chroma, weighted):
     for index in range(lab.shape[0]):
         lightness = lab[index, 0] - target[0]
         saturation = chroma[index] - target_chroma
-        # The difference of hue as a chord at the target's chroma, squared: 2 C^2 (1 - cos).
-        cosine = 0.0
-        if chroma[index] >= GREY_CHROMA and target_chroma > 0.0:
-            cosine = ((lab[index, 1] * target[1] + lab[index, 2] * target[2])
-                      / (chroma[index] * target_chroma))
-        hue = 2.0 * target_chroma * target_chroma * (1.0 - cosine)
+        if chroma[index] >= GREY_CHROMA:
+            # The difference of hue (CIE's delta H): what is left of the distance in a, b
+            # once that of chroma is taken out, 2 C1 C2 (1 - cos dh).
+            hue = (2.0 * (chroma[index] * target_chroma - lab[index, 1] * target[1]
+                          - lab[index, 2] * target[2]))
+        else:  # an entry without hue loses all the target's: counted as hue too
+            hue = target_chroma * target_chroma
         weighted[index] = lightness * lightness + saturation * saturation + HUE_WEIGHT * hue
 
 

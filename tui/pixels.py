@@ -47,15 +47,21 @@ class ImageEncoder:
         if cell.width < 1 or cell.height < 1:
             raise ValueError(f"a cell must be at least one pixel each way, not {cell}")
         self.cell = cell
-        self._shape: tuple[int, int] | None = None  # the picture in cells: (rows, columns)
+        # The style of the lines under the image, the picture's background: where an image
+        # is smaller than its cells (sixel), the terminal's own (xterm's white) would show.
+        # Set by the viewport; read as the lines are made.
+        self.background = Style()
+        # The picture in cells, (rows, columns), and the background its lines were made in.
+        self._shape: tuple[tuple[int, int], Style] | None = None
         self._strips: list[Strip] = []
 
     def encode(self, frame: np.ndarray) -> Picture:
         """The picture of ``frame`` ((h, w, 3) uint8, a whole number of cells)."""
         rows, columns = frame.shape[0] // self.cell.height, frame.shape[1] // self.cell.width
         changed = []
-        if self._shape != (rows, columns):
-            self._shape = rows, columns
+        background = self.background
+        if self._shape != ((rows, columns), background):
+            self._shape = (rows, columns), background
             self._strips = self.lines(columns, rows)
             changed = [(0, rows)]
         return Picture(self._strips, changed, self.image(frame, columns, rows))
@@ -64,8 +70,8 @@ class ImageEncoder:
         self._shape = None
 
     def lines(self, columns: int, rows: int) -> list[Strip]:
-        """The lines under the image: blank."""
-        return [Strip.blank(columns)] * rows
+        """The lines under the image: blank, on the background."""
+        return [Strip.blank(columns, self.background)] * rows
 
     def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
         """Escape sequences drawing ``frame`` from the cursor over ``columns x rows`` cells

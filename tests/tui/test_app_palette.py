@@ -73,7 +73,7 @@ def test_the_background_is_its_nearest_colour_all_over_not_black(frame):
 def test_dithering_keeps_the_shading_true_where_pixel_by_pixel_mapping_bands(frame):
     mapped = Palette256().mapped(frame, BACKGROUND)
     ours, rich = _block_error(mapped, frame), _block_error(_downgraded(frame), frame)
-    assert ours < rich / 2  # measured 4.7, where Rich's is 11.5
+    assert ours < rich / 2  # measured 5.2, where Rich's is 12.2
 
 
 def test_a_shaded_red_is_dithered_from_reds_only():
@@ -119,7 +119,7 @@ async def test_the_app_in_256_colours_shows_the_mapped_picture(biceps, monkeypat
         frame = SceneRenderer().render(Scene.of(config), width, 2 * height)
         assert np.all(numbers[np.all(frame == rgb(config.render.background), axis=2)] == 233)
         background, muscle = rgb(config.render.background), rgb(config.render.muscle_colour)
-        assert blurred_difference(frame, shown, background) <= 0.025  # measured 0.0197
+        assert blurred_difference(frame, shown, background) <= 0.025  # measured 0.0219
         assert off_hue_share(frame, shown, background, muscle) <= 0.02  # measured 0
 
 

@@ -58,6 +58,7 @@ from biceps.tui.encoder import Picture, PictureEncoder
 from biceps.tui.halfblocks import HalfBlocks, TextCells
 from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer
+from biceps.tui.pixels import ImageEncoder
 from biceps.tui.prerendered import PrerenderedStrip, console_system
 from biceps.tui.palette import Palette256, background_colour
 from biceps.tui.palette import colour as palette_colour
@@ -189,6 +190,8 @@ class Viewport(Widget, can_focus=True):
         background = rgb(scene.render.background)
         self._background = Style(bgcolor=Color.from_rgb(*background) if self._palette is None
                                  else background_colour(background))
+        if isinstance(self._encoder, ImageEncoder):
+            self._encoder.background = self._background
         self._request_frame()
 
     def on_mount(self) -> None:
