@@ -218,16 +218,16 @@ def colours(asked: str, answers: Answers | None, place: Place,
     ``auto``, ``truecolor`` or ``256``), never fewer than 256: in 16 the shaded muscle is a
     flat yellow stick, and every terminal in use has 256 (xterm since 1999)."""
     if asked != "auto":
-        return Colours(asked, f"{'24-bit' if asked == 'truecolor' else '256'}, as asked")
+        return Colours(asked, f"{_named(asked)}, as asked")
     chosen = environ.get("TEXTUAL_COLOR_SYSTEM", "auto")
     if chosen in ("truecolor", "256"):
-        return Colours(chosen, f"TEXTUAL_COLOR_SYSTEM={chosen}")
+        return Colours(chosen, f"{_named(chosen)}: TEXTUAL_COLOR_SYSTEM={chosen}")
     answers = answers or Answers()
     inside = multiplexer(answers, place)
     if inside == "tmux":
         return _tmux_colours(answers, place)
     if inside == "screen":
-        return Colours("256", "GNU screen (4) shows 256 colours at most")
+        return Colours("256", "256: GNU screen (4) shows 256 colours at most")
     if answers.true_colour:
         how = ("it read back a 24-bit colour (DECRQSS)" if answers.sgr else
                f"its terminfo says {' and '.join(sorted(answers.capabilities))} (XTGETTCAP)")
@@ -241,6 +241,10 @@ def colours(asked: str, answers: Answers | None, place: Place,
     said = "the terminal did not say it keeps a 24-bit colour, and COLORTERM is " + (
         colorterm or "unset")
     return Colours("256", f"256: {said} (--colors truecolor if it shows 24-bit colour)")
+
+
+def _named(system: str) -> str:
+    return "24-bit" if system == "truecolor" else "256"
 
 
 def _tmux_colours(answers: Answers, place: Place) -> Colours:
@@ -297,7 +301,8 @@ def report(asked: str, answers: Answers | None, place: Place, choice: Choice,
                   + (f", {a.colour_registers} colour registers" if a.colour_registers else "")
                   + (f", at most {a.sixel_limit[0]}x{a.sixel_limit[1]} pixels"
                      if a.sixel_limit else "")),
-        ("cell size", f"{choice.cell[0]}x{choice.cell[1]} pixels"),
+        ("cell size", f"{choice.cell[0]}x{choice.cell[1]} pixels"
+                      + (f", in a terminal of {a.size[0]}x{a.size[1]} cells" if a.size else "")),
         ("colours", f"{colour.reason} (COLORTERM={place.colorterm or 'unset'})"),
         ("graphics", f"{choice.graphics}: {choice.reason}"),
     ]
