@@ -50,8 +50,7 @@ def print_image(protocol: str, render: Callable[[int, int], np.ndarray],
                 size: tuple[int, int] | None = None) -> None:
     """Render a picture that fits the window, or of ``size`` pixels, and print it in
     ``protocol``; refuse, saying why, where the terminal answers that it cannot show it."""
-    answers = detect.ask() if sys.stdout.isatty() else None
-    choice = choose.choose(protocol, answers, detect.Place.here())
+    choice = choose.choose(protocol, terminal_answers(), detect.Place.here())
     if choice.graphics != protocol:
         why = choice.reason.removesuffix(": half-blocks")
         raise BicepsError(f"cannot print --{protocol} here: {why}{_instead(choice)}")
@@ -71,6 +70,11 @@ def print_image(protocol: str, render: Callable[[int, int], np.ndarray],
                      + image(protocol, frame, columns, rows, choice) + "\x1b8"
                      + f"\x1b[{rows}B\r")
     sys.stdout.flush()
+
+
+def terminal_answers() -> detect.Answers | None:
+    """What the terminal the picture goes to answers; None if it goes elsewhere (a file)."""
+    return detect.ask() if sys.stdout.isatty() else None
 
 
 def _instead(choice: choose.Choice) -> str:
