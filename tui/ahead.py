@@ -7,7 +7,8 @@ longest, in one, which the command line starts as soon as it has read the config
 (``biceps/cli.py``); the framing, the vertex stage, the downsampling, the 256-colour
 palette where the terminal has no more, and the encoder in another. This process first
 compiles the outline's small kernel, which also tells a warm cache from a cold one: with a
-warm cache no other child starts, and the rasterizer's is stopped. The render thread waits for the children and loads what they compiled.
+warm cache no other child starts, and the rasterizer's is stopped. The render thread waits
+for the children and loads what they compiled.
 
 On a first run the viewport says so (:func:`preparing`), with the parts done and the time
 so far, until the first picture comes; the keys work meanwhile.

@@ -115,7 +115,7 @@ def fit_cells(frame, columns, rows, exact, cells, pixels):
             first, second, farthest = 0, 0, 0
             for i in range(count):
                 for j in range(i + 1, count):
-                    distance = _distance(pixels, i, pixels, j)
+                    distance = _distance(pixels, i, j)
                     if distance > farthest:
                         first, second, farthest = i, j, distance
             if farthest == 0:
@@ -137,15 +137,17 @@ def fit_cells(frame, columns, rows, exact, cells, pixels):
 
 
 @helper
-def _distance(pixels, i, others, j):
-    red = pixels[i, 0] - others[j, 0]
-    green = pixels[i, 1] - others[j, 1]
-    blue = pixels[i, 2] - others[j, 2]
+def _distance(pixels, i, j):
+    """The squared distance between pixels ``i`` and ``j`` in sRGB."""
+    red = pixels[i, 0] - pixels[j, 0]
+    green = pixels[i, 1] - pixels[j, 1]
+    blue = pixels[i, 2] - pixels[j, 2]
     return red * red + green * green + blue * blue
 
 
 @helper
 def _packed(pixels, i):
+    """Pixel ``i``'s colour as one number, ``r << 16 | g << 8 | b``."""
     return pixels[i, 0] << 16 | pixels[i, 1] << 8 | pixels[i, 2]
 
 
@@ -154,7 +156,7 @@ def _grouped(pixels, count, first, second):
     """The pattern of the pixels nearer to pixel ``first`` than to pixel ``second``."""
     pattern = 0
     for i in range(count):
-        if _distance(pixels, i, pixels, first) <= _distance(pixels, i, pixels, second):
+        if _distance(pixels, i, first) <= _distance(pixels, i, second):
             pattern |= 1 << i
     return pattern
 

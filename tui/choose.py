@@ -126,10 +126,12 @@ def _through_tmux(answers: Answers, place: Place) -> tuple[str | None, str]:
         return None, (f"inside tmux in {outer}, with allow-passthrough off (tmux set -g "
                       "allow-passthrough on lets kitty's images through)")
     version = _version(place.outer_version or "", "kitty")
-    if kitty == "kitty" and (version is None or version < PLACEHOLDERS_SINCE):
-        which = place.outer_version or "a kitty whose version tmux does not know"
-        return None, (f"inside tmux in {which}, older than kitty 0.28, whose Unicode "
-                      "placeholders place images inside tmux")
+    if kitty == "kitty" and version is None:
+        return None, (f"inside tmux in {outer}, whose version tmux does not know: kitty's "
+                      "Unicode placeholders, which place images inside tmux, need 0.28")
+    if kitty == "kitty" and version < PLACEHOLDERS_SINCE:
+        return None, (f"inside tmux in {place.outer_version}, older than kitty 0.28, whose "
+                      "Unicode placeholders place images inside tmux")
     return "kitty", (f"inside tmux in {place.outer_version or outer}, with allow-passthrough "
                      "on: kitty images through it, placed by Unicode placeholders")
 
@@ -154,7 +156,7 @@ def choose(asked: str, answers: Answers | None, place: Place) -> Choice:
             notes += (f"sixel images are at most {limit[0]}x{limit[1]} pixels here: the "
                       "picture is drawn that large at most, in the middle of its cells "
                       "(xterm takes larger with -xrm 'XTerm*maxGraphicSize: 4000x4000')",)
-    through = multiplexer(answers, place) if multiplexer(answers, place) == "tmux" else None
+    through = "tmux" if multiplexer(answers, place) == "tmux" else None
     drawer = drawing_terminal(answers, place)
     text = "sextants" if drawer else "halfblocks"
     text_why = (f"sextants, which {drawer} draws itself" if drawer else
@@ -229,7 +231,7 @@ def colours(asked: str, answers: Answers | None, place: Place,
     if inside == "screen":
         return Colours("256", "256: GNU screen (4) shows 256 colours at most")
     if answers.true_colour:
-        how = ("it read back a 24-bit colour (DECRQSS)" if answers.sgr else
+        how = ("it read back a 24-bit colour (DECRQSS)" if answers.reads_back_24_bit else
                f"its terminfo says {' and '.join(sorted(answers.capabilities))} (XTGETTCAP)")
         return Colours("truecolor", f"24-bit: {how}")
     if answers.true_colour is False:

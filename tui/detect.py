@@ -107,12 +107,15 @@ class Answers:
         return "screen" if self.secondary[:1] == (SCREEN,) else None
 
     @property
+    def reads_back_24_bit(self) -> bool:
+        """Whether DECRQSS read the 24-bit colour back as it was set."""
+        return self.sgr is not None and re.search(r"38[:;]2[:;]", self.sgr) is not None
+
+    @property
     def true_colour(self) -> bool | None:
         """Whether the terminal keeps a 24-bit colour as it is (DECRQSS read it back, or
         terminfo's Tc or RGB); False if it read back a palette's; None if nothing said."""
-        if self.sgr is not None and re.search(r"38[:;]2[:;]", self.sgr):
-            return True
-        if self.capabilities & TRUE_COLOUR_CAPABILITIES:
+        if self.reads_back_24_bit or self.capabilities & TRUE_COLOUR_CAPABILITIES:
             return True
         if self.sgr is not None and re.search(r"38[:;]5[:;]", self.sgr):
             return False

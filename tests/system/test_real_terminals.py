@@ -40,8 +40,9 @@ from PIL import Image
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config, rgb
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui.cells import SHAPES, CellRows, unpacked
+from biceps.tui.cells import SHAPES, CellRows
 from biceps.tui.palette import Palette256
+from pictures import cell_pixels
 
 ROOT = Path(__file__).resolve().parents[2]
 SCREEN = (1600, 1000)  # Xvfb's, in pixels: room for a maximised xterm
@@ -321,15 +322,7 @@ def _expected(cell: Cell, report: str) -> Expected:
         frame = Palette256().mapped(frame, background)
     cells = CellRows(shape, exact=cell.colours == "256")
     cells.fit(np.ascontiguousarray(frame))
-    # Each pixel of the cells, in its colour: the cell's foreground or background.
-    pixels = np.zeros((viewport[1] * shape.rows, viewport[0] * shape.columns, 3), int)
-    for (y, x), packed in np.ndenumerate(cells.cells):
-        fore, back, pattern = unpacked(int(packed))
-        for index in range(shape.pixels):
-            row, column = divmod(index, shape.columns)
-            colour = fore if pattern >> index & 1 else back
-            pixels[y * shape.rows + row, x * shape.columns + column] = (
-                colour >> 16, colour >> 8 & 255, colour & 255)
+    pixels = cell_pixels(shape, cells.cells).astype(int)
     # As the terminal draws them: each cell's pixels split its width and height.
     across = np.arange(viewport[0] * width) * shape.columns // width
     down = np.arange(viewport[1] * height) * shape.rows // height

@@ -11,6 +11,7 @@ from textual.strip import Strip
 
 from biceps.tui.cells import HALF_BLOCKS, QUADRANTS, SEXTANTS, CellRows, unpacked
 from biceps.tui.halfblocks import TextCells
+from pictures import cell_pixels
 
 SHAPES = [HALF_BLOCKS, QUADRANTS, SEXTANTS]
 
@@ -28,26 +29,12 @@ def _two_colour_frame(shape, rows: int, columns: int, seed: int) -> np.ndarray:
     return frame
 
 
-def _shown(shape, cells: np.ndarray) -> np.ndarray:
-    """The pixels the cells show: (rows h, columns w, 3) uint8."""
-    height, width = cells.shape
-    frame = np.zeros((height * shape.rows, width * shape.columns, 3), np.uint8)
-    for (y, x), cell in np.ndenumerate(cells):
-        fore, back, pattern = unpacked(int(cell))
-        for index in range(shape.pixels):
-            row, column = divmod(index, shape.columns)
-            colour = fore if pattern >> index & 1 else back
-            frame[y * shape.rows + row, x * shape.columns + column] = (
-                colour >> 16, colour >> 8 & 255, colour & 255)
-    return frame
-
-
 @pytest.mark.parametrize("shape", SHAPES, ids=lambda shape: shape.name)
 def test_cells_of_two_colours_are_shown_exactly(shape):
     frame = _two_colour_frame(shape, 7, 9, seed=len(shape.glyphs))
     cells = CellRows(shape)
     cells.fit(frame)
-    np.testing.assert_array_equal(_shown(shape, cells.cells), frame)
+    np.testing.assert_array_equal(cell_pixels(shape, cells.cells), frame)
 
 
 @pytest.mark.parametrize("shape", SHAPES, ids=lambda shape: shape.name)
