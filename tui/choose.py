@@ -63,8 +63,9 @@ class Colours:
 
 
 def multiplexer(answers: Answers, place: Place) -> str | None:
-    """The multiplexer in front of the terminal, as the environment or the answers say."""
-    return place.multiplexer or answers.multiplexer
+    """The multiplexer in front of the terminal, as its answers or the environment say (a
+    tmux reached over SSH may have set TERM=screen)."""
+    return answers.multiplexer or place.multiplexer
 
 
 def _version(name: str, program: str) -> tuple[int, ...] | None:
@@ -112,7 +113,7 @@ def best(answers: Answers, place: Place) -> tuple[str | None, str]:
 def _through_tmux(answers: Answers, place: Place) -> tuple[str | None, str]:
     if answers.sixel:
         return "sixel", "tmux draws sixel images itself (its device attributes say 4)"
-    if place.multiplexer is None:  # tmux answered, but its command is not here
+    if place.multiplexer != "tmux":  # tmux answered, but its command is not here
         return None, (f"inside tmux ({answers.name or 'it answered as tmux'}), from another "
                       "machine (over SSH): which terminal is behind it cannot be asked")
     outer = place.outer_terminal or ""
@@ -258,7 +259,7 @@ def _tmux_colours(answers: Answers, place: Place) -> Colours:
         return Colours("256", f"256: tmux sends {outer} 256 colours (tmux set -as "
                               "terminal-features ',*:RGB' if it shows 24-bit)")
     version = _version(answers.name or "", "tmux")
-    if place.multiplexer is None and version is not None and version >= TRUE_COLOUR_TMUX:
+    if place.multiplexer != "tmux" and version is not None and version >= TRUE_COLOUR_TMUX:
         return Colours("truecolor", f"24-bit: {answers.name} answered, and tmux 3.2 and later "
                                     "send 24-bit colour to the terminals they know have it "
                                     "(--colors 256 if the picture shows bands)")
@@ -328,7 +329,7 @@ def _terminal_line(answers: Answers, place: Place) -> str:
 def _multiplexer_line(answers: Answers, place: Place) -> str:
     inside = multiplexer(answers, place)
     name = "GNU screen" if inside == "screen" else "tmux"
-    if place.multiplexer is None:
+    if place.multiplexer != inside:
         return (f"{name} (it answered as {answers.name or name}; its variables are not here: "
                 "over SSH, or from another machine)")
     if place.outer_terminal:

@@ -155,10 +155,14 @@ def test_inside_tmux_sixel_when_tmux_draws_it_and_nothing_it_cannot_place():
     assert asked.graphics == "halfblocks" and asked.reason.startswith("iterm was asked, but")
 
 
-def test_tmux_over_ssh_is_known_by_its_answers():
-    choice = choose("auto", answers_of("tmux"), Place(term="tmux-256color"))
+@pytest.mark.parametrize("term", ["tmux-256color", "screen-256color"])
+def test_tmux_over_ssh_is_known_by_its_answers(term):
+    # (an older tmux, or a tmux.conf, may name its terminal screen)
+    place = Place(multiplexer="screen" if term.startswith("screen") else None, term=term)
+    choice = choose("auto", answers_of("tmux"), place)
     assert choice.graphics == "halfblocks"
     assert "from another machine (over SSH): which terminal is behind it" in choice.reason
+    assert colours("auto", answers_of("tmux"), place, {}).system == "truecolor"
 
 
 def test_inside_screen_text():
