@@ -28,7 +28,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 from colours import blurred_difference, off_hue_share  # noqa: E402
 
-CONFIGS = ("configs/biceps.toml", "configs/elbow.toml")
+CONFIGS = ("biceps.toml", "elbow.toml")  # each interpreter's own bundled models
 SIZES = ((80, 44), (120, 68), (200, 112))
 VIEWS = ({}, {"scale": 2.0}, {"yaw": 60, "pitch": 20}, {"yaw": -90})
 
@@ -36,14 +36,15 @@ VIEWS = ({}, {"scale": 2.0}, {"yaw": 60, "pitch": 20}, {"yaw": -90})
 MAP = """
 import json, sys, time
 import numpy as np
+from biceps.configs import FOLDER
 from biceps.engine.config import load_config, rgb
 from biceps.engine.scene import Scene, SceneRenderer
 from biceps.tui.palette import Palette256
 
-root, configs, sizes, views, out = sys.argv[1], *map(json.loads, sys.argv[2:5]), sys.argv[5]
+configs, sizes, views, out = *map(json.loads, sys.argv[1:4]), sys.argv[4]
 pictures = {}
 for name in configs:
-    config = load_config(f"{root}/{name}")
+    config = load_config(FOLDER / name)
     background = rgb(config.render.background)
     for width, height in sizes:
         for number, view in enumerate(views):
@@ -52,7 +53,7 @@ for name in configs:
             pictures[f"{name} {width} {number} 24"] = frame
             pictures[f"{name} {width} {number} 256"] = Palette256().mapped(frame, background)
 np.savez(out, **pictures)
-config = load_config(f"{root}/{configs[0]}")
+config = load_config(FOLDER / configs[0])
 background, renderer, palette = rgb(config.render.background), SceneRenderer(), Palette256()
 frames = [renderer.render(Scene.of(config).with_view(yaw=2.0 * step), 200, 120).copy()
           for step in range(51)]
@@ -71,10 +72,12 @@ print(json.dumps({"first": first, "median": sorted(times)[len(times) // 2]}))
 
 def measured(python: str, folder: Path, name: str) -> tuple[dict, dict]:
     out = folder / f"{name}.npz"
+    # -P, from a folder of its own: the biceps that interpreter has installed, not this
+    # checkout's through the current folder.
     process = subprocess.run(
-        [python, "-c", MAP, str(ROOT), json.dumps(CONFIGS), json.dumps(SIZES),
-         json.dumps(VIEWS), str(out)],
-        capture_output=True, text=True, check=True, timeout=1800)
+        [python, "-P", "-c", MAP, json.dumps(CONFIGS), json.dumps(SIZES), json.dumps(VIEWS),
+         str(out)],
+        capture_output=True, text=True, check=True, timeout=1800, cwd=folder)
     return dict(np.load(out)), json.loads(process.stdout.splitlines()[-1])
 
 
@@ -88,12 +91,13 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as folder:
         results = {label: measured(python, Path(folder), label)
                    for label, python in pythons.items()}
+    from biceps.configs import FOLDER
     from biceps.engine.config import load_config, rgb
 
     print(f"{'model':<12} {'size':>7} {'view':<22}"
           + "".join(f" {label + ': blurred':>16} {'off hue':>8}" for label in pythons))
     for name in CONFIGS:
-        config = load_config(ROOT / name)
+        config = load_config(FOLDER / name)
         background, muscle = rgb(config.render.background), rgb(config.render.muscle_colour)
         for width, height in SIZES:
             for number, view in enumerate(VIEWS):
