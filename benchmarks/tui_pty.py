@@ -27,7 +27,8 @@ Phases, for each app and size:
 
 ``--graphics`` measures biceps once with each of the text encoders named (its
 ``--graphics``), one after the other, beside the baseline: half-blocks, and the finer
-sextants or quadrants, whose bytes a frame are to be compared with the half-blocks'.
+sextants or quadrants, each with its bytes a frame over those of the half-blocks measured
+last before it at the same size ("/ biceps").
 
 Then, at one size, each emulated link (the pty read no faster than N Mbit/s): the key held
 at 30 a second, then released; the lag is the time from the last key to the end of the
@@ -378,7 +379,10 @@ def run_rich_pixels_app(config: Path) -> None:
 # The table
 
 
-def measure_app(name: str, argv: list[str], size: tuple[int, int], seconds: float) -> str:
+def measure_app(name: str, argv: list[str], size: tuple[int, int], seconds: float,
+                half_blocks_kb: float | None = None) -> tuple[str, float]:
+    """The app's line of the table, and its KB a frame in the flood; ``half_blocks_kb``:
+    the half-blocks' at this size in this run, for the ratio."""
     terminal = started(argv, *size)
     try:
         typematic = hold(terminal, TYPEMATIC, seconds)
@@ -386,8 +390,11 @@ def measure_app(name: str, argv: list[str], size: tuple[int, int], seconds: floa
     finally:
         terminal.close()
     median, p95 = typematic.latency_ms
+    ratio = (f"{flood.kb_per_frame / half_blocks_kb:8.2f}x" if half_blocks_kb else
+             f"{'-':>9}")
     return (f"{name:<12} {size[0]}x{size[1]:<8} {typematic.fps:7.1f} {flood.fps:7.1f} "
-            f"{flood.kb_per_frame:9.1f} {median:8.1f} {p95:8.1f} {flood.cpu_percent:6.0f}")
+            f"{flood.kb_per_frame:9.1f} {ratio} {median:8.1f} {p95:8.1f} "
+            f"{flood.cpu_percent:6.0f}"), flood.kb_per_frame
 
 
 def measure_link(name: str, argv: list[str], size: tuple[int, int], megabits: float,
@@ -437,12 +444,18 @@ def main() -> None:
         apps.append(("rich-pixels", baseline_argv(arguments.config)))
     print(f"model: {arguments.config}")
 
-    print(f"{'':<12} {'':<12} {'fps at keys/s':>15} {'':>9} {'key to picture':>17}")
-    print(f"{'app':<12} {'size':<12} {'30':>7} {'120':>7} {'KB/frame':>9} {'median':>8} "
-          f"{'p95 ms':>8} {'CPU %':>6}")
+    # The bytes a frame of each over the half-blocks' measured last at the same size.
+    print(f"{'':<12} {'':<12} {'fps at keys/s':>15} {'':>9} {'bytes':>9} "
+          f"{'key to picture':>17}")
+    print(f"{'app':<12} {'size':<12} {'30':>7} {'120':>7} {'KB/frame':>9} {'/ biceps':>9} "
+          f"{'median':>8} {'p95 ms':>8} {'CPU %':>6}")
     for size in sizes:
+        half_blocks_kb = None
         for name, argv in apps:
-            print(measure_app(name, argv, size, arguments.seconds), flush=True)
+            line, kb = measure_app(name, argv, size, arguments.seconds, half_blocks_kb)
+            if name == "biceps":
+                half_blocks_kb = kb
+            print(line, flush=True)
     print()
     print(f"{'app':<12} {'size':<10} {'link':>12} {'lag':>9} {'key ms':>10} {'answered':>9}")
     for megabits in map(float, arguments.links.split(",")):
