@@ -423,8 +423,8 @@ PNG_SIZE = (1920, 1080)
 @click.option("-o", "--output", type=click.Path(path_type=Path),
               help="The PNG file to write.")
 @click.option("--size", callback=_parse_size, metavar="WxH",
-              help=f"Picture size in pixels (default {PNG_SIZE[0]}x{PNG_SIZE[1]}; printed, the "
-              "terminal's width).")
+              help=f"Picture size in pixels (default {PNG_SIZE[0]}x{PNG_SIZE[1]}; printed, to "
+              "fit the window).")
 @click.option("--ansi", "printed", flag_value="ansi",
               help="Print the picture as half-block pixels instead, in colour even into a pipe.")
 @click.option("--kitty", "printed", flag_value="kitty",
@@ -442,8 +442,9 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
              **overrides: Any) -> None:
     """Render CONFIG to a PNG file, with no terminal needed, or print it to this one.
 
-    --kitty, --sixel and --iterm print a picture as wide as the terminal in its own pixels
-    (as --ansi does in half-blocks), in that protocol, unless --size says otherwise.
+    --kitty, --sixel and --iterm print a picture that fits the window, in the terminal's own
+    pixels, in that protocol: as wide as the terminal at 16:9, or as tall as the window
+    where that would be taller (--ansi: as wide, in half-blocks); --size says otherwise.
     """
     from biceps.engine.export import check_writable, write_png
     from biceps.engine.scene import SMALL_PICTURE, SceneRenderer, supersampling
