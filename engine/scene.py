@@ -346,9 +346,10 @@ class SceneRenderer:
         self._marked: np.ndarray | None = None
 
     def render(self, scene: Scene, width: int, height: int,
-               framed: np.ndarray | None = None) -> np.ndarray:
+               framed: np.ndarray | None = None, pixel_aspect: float = 1.0) -> np.ndarray:
         """The picture of ``scene``: (height, width, 3) uint8, valid until the next call;
-        :class:`BicepsError` if its buffers would take more memory than the bound.
+        :class:`BicepsError` if its buffers would take more memory than the bound. Its
+        pixels are shown ``pixel_aspect`` as wide as they are tall.
 
         ``framed``: the points (k, 3), world space at rest, the camera fits to the picture
         (and the view turns about the middle of); the scene's own `outline` if None. A
@@ -358,12 +359,12 @@ class SceneRenderer:
         check_picture(width, height, ssaa)
         mesh, albedo = self._mesh_of(scene)
         framed = self._outline if framed is None else framed
-        camera, model = view_camera(scene.view, framed, width / height)
+        camera, model = view_camera(scene.view, framed, width * pixel_aspect / height)
         light = zoomed_light(scene.light, scene.view.scale, camera)
         return self._renderer.render(
             mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
             light, width, height, shading=scene.render.shading,
-            ssaa=ssaa, background=rgb(scene.render.background),
+            ssaa=ssaa, background=rgb(scene.render.background), pixel_aspect=pixel_aspect,
         )  # fmt: skip
 
     def outline(self, scene: Scene) -> np.ndarray:

@@ -42,6 +42,7 @@ from biceps.engine.files import same_file
 from biceps.engine.names import printable
 from biceps.engine.scene import Scene, SceneRenderer, supersampling
 from biceps.tui import detect
+from biceps.tui.choose import TEXT, choose, colours, notice
 from biceps.tui.ahead import compile_ahead, lean_once_ready
 from biceps.tui.changes import (
     COARSE_STEP,
@@ -163,7 +164,7 @@ class BicepsApp(App[None]):
         """``fps``: the most frames a second the picture is redrawn at, up to Textual's
         limit (``TEXTUAL_FPS``, 60 unless set), the cap if None; ``encoder``: how the
         picture reaches the terminal (default: half-blocks); ``notice``: said once the app
-        is up (what the terminal could show, see tui/detect.py). ``rescue``: start on the
+        is up (what the terminal could show, see tui/choose.py). ``rescue``: start on the
         model an app left when it ended on an error, and offer to save it."""
         super().__init__()
         # Textual paints no more often than its limit, but the viewport writes most frames
@@ -722,36 +723,41 @@ def _bundled(path: Path) -> bool:
 def run_app(config: Config, colors: str = "auto", fps: float | None = None,
             compile_aside: bool = False, graphics: str | None = None,
             pixel_scale: float = 1.0) -> int:
-    """Run the app on ``config``; ``colors`` is ``auto``, ``truecolor`` or ``256``; ``fps``
-    caps the frame rate. ``compile_aside``: compile a frame's kernels in forked children
-    while Textual starts (see tui/ahead.py), for a process of its own.
-    ``graphics``: the command line's choice of how the picture reaches the terminal
-    (default: the config's), real pixels ``pixel_scale`` of the terminal's each way.
+    """Run the app on ``config``; ``colors`` is ``auto`` (the config's, or what the terminal
+    answers), ``truecolor`` or ``256``; ``fps`` caps the frame rate. ``compile_aside``:
+    compile a frame's kernels in forked children while Textual starts (see tui/ahead.py),
+    for a process of its own. ``graphics``: the command line's choice of how the picture
+    reaches the terminal (default: the config's), real pixels ``pixel_scale`` of the
+    terminal's each way.
 
     Returns the exit status: 0, or 1 if the app ended on an error, after offering to save
     the model it had (:func:`rescued`)."""
     previous = textual.constants.COLOR_SYSTEM
-    # Textual's apps take their colours from this constant as they are made (it read
-    # TEXTUAL_COLOR_SYSTEM once, on import). Put back after, for a caller that goes on
-    # (a test process) and should keep its own.
-    textual.constants.COLOR_SYSTEM = detect.colour_system(colors)
     try:
-        return _run(config, fps, compile_aside, graphics, pixel_scale)
+        return _run(config, colors, fps, compile_aside, graphics, pixel_scale)
     finally:
         textual.constants.COLOR_SYSTEM = previous
 
 
-def _run(config: Config, fps: float | None, compile_aside: bool, graphics: str | None,
-         pixel_scale: float) -> int:
+def _run(config: Config, colors: str, fps: float | None, compile_aside: bool,
+         graphics: str | None, pixel_scale: float) -> int:
     # Asked before Textual takes the terminal (its input thread would take the answers); not
-    # at all when the command line says half-blocks, so nothing is written but the app.
+    # at all when the command line says half-blocks and the colours, so nothing is written
+    # but the app.
     asked = graphics or config.render.graphics
-    answers = None if graphics == "halfblocks" else detect.ask()
-    choice = detect.choose(asked, answers, detect.Place.here())
+    colours_asked = config.render.colors if colors == "auto" else colors
+    answers = None if graphics == "halfblocks" and colors != "auto" else detect.ask()
+    place = detect.Place.here()
+    choice = choose(asked, answers, place)
+    # Textual's apps take their colours from this constant as they are made (it read
+    # TEXTUAL_COLOR_SYSTEM once, on import); run_app puts it back after, for a caller that
+    # goes on (a test process) and should keep its own.
+    system = colours(colours_asked, answers, place).system
+    textual.constants.COLOR_SYSTEM = system
     encoder = encoder_for(choice, pixel_scale)
     if compile_aside:
-        compile_ahead(config, encoder)
-    app = BicepsApp(config, fps=fps, encoder=encoder, notice=detect.notice(asked, choice))
+        compile_ahead(config, encoder, palette=system == "256" and choice.graphics in TEXT)
+    app = BicepsApp(config, fps=fps, encoder=encoder, notice=notice(asked, choice))
     app.run()
     if app.failure is None:
         return 0

@@ -102,7 +102,9 @@ async def test_notifications_keep_to_the_side_panel_over_real_pixels(config: Con
     app = BicepsApp(config, encoder=Numbered())
     async with app.run_test(size=(100, 30), notifications=True) as pilot:
         app.notify("a notification long enough to wrap over several lines of the toast")
-        await pilot.pause(0.3)
+        # (laid out a refresh or two later: on a busy machine, later than a set pause)
+        await until(pilot, lambda: app.screen.query("Toast") and
+                    app.screen.query_one("Toast").region.width)
         toast = app.screen.query_one("ToastRack").query_one("Toast")
         assert toast.region.x >= app.query_one(Viewport).content_region.right
 

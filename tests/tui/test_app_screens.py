@@ -23,9 +23,9 @@ def render_sizes(monkeypatch) -> list[tuple[int, int]]:
     sizes = []
 
     class RecordingRenderer(SceneRenderer):
-        def render(self, scene, width, height):
+        def render(self, scene, width, height, framed=None, pixel_aspect=1.0):
             sizes.append((width, height))
-            return super().render(scene, width, height)
+            return super().render(scene, width, height, framed, pixel_aspect)
 
     monkeypatch.setattr("biceps.tui.widgets.viewport.SceneRenderer", RecordingRenderer)
     return sizes
