@@ -16,6 +16,7 @@ import io
 import math
 import random
 import shutil
+import time
 
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
@@ -132,6 +133,7 @@ async def _drive(folder, bursts) -> int:
             await _taken(app)
             assert app.failure is None
         await pilot.resize_terminal(80, 24)
+        await _taken(app)
         await pilot.pause()
         _check_model(app)
     assert app.failure is None and app.return_code in (None, 0)
@@ -140,12 +142,16 @@ async def _drive(folder, bursts) -> int:
 
 async def _taken(app: BicepsApp) -> None:
     """Wait until the app and every widget have handled what they were sent: quicker than
-    the pilot's pause, which waits for the process to be idle (the picture's thread too)."""
-    for _ in range(5_000):
+    the pilot's pause, which waits for the process to be idle (the picture's thread too).
+    However long a loaded machine takes: given up after five seconds, a burst's last edits
+    were still queued when the model was checked against the numbers shown."""
+    deadline = time.monotonic() + 600
+    while time.monotonic() < deadline:
         nodes = [app, *app.screen_stack, *app.screen.walk_children()]
         if not any(node._message_queue.qsize() for node in nodes):
             return
         await asyncio.sleep(0.001)
+    raise AssertionError("the app has not taken its input in ten minutes")
 
 
 def _check_model(app: BicepsApp) -> None:
