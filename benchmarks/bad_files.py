@@ -268,14 +268,38 @@ def main() -> None:
             print(f"{verdict(name, status, cpu, peak):<5}{name[:40]:<41}{command:<12}"
                   f"{shown:>6}{seconds:>7.1f} s{cpu:>7.1f} s{peak / (1 << 20):>7.0f} MB  "
                   f"{last[:100]}", flush=True)
-    worst_time = max(rows, key=lambda row: row[4])
-    worst_memory = max(rows, key=lambda row: row[5])
     failed = sum(verdict(row[0], row[2], row[4], row[5]) != "ok" for row in rows)
     print(f"\n{len(rows)} runs (status, wall and CPU seconds, peak memory), {failed} outside "
-          f"the goal; the most CPU {worst_time[4]:.1f} s ({worst_time[0]}, {worst_time[1]}: "
-          f"{worst_time[3]:.1f} s wall); the most memory {worst_memory[5] / (1 << 20):.0f} MB "
-          f"({worst_memory[0]}, {worst_memory[1]}); load average {os.getloadavg()[0]:.1f}")
+          f"the goal; load average {os.getloadavg()[0]:.1f}. The worst of each kind:")
+    for kind, rows_of_kind in kinds(rows).items():
+        if rows_of_kind:
+            most_cpu = max(rows_of_kind, key=lambda row: row[4])
+            most_wall = max(rows_of_kind, key=lambda row: row[3])
+            most_memory = max(rows_of_kind, key=lambda row: row[5])
+            print(f"{kind} ({len(rows_of_kind)} runs): the most CPU {most_cpu[4]:.1f} s "
+                  f"({most_cpu[0]}, {most_cpu[1]}); the most wall time {most_wall[3]:.1f} s "
+                  f"({most_wall[0]}, {most_wall[1]}); the most memory "
+                  f"{most_memory[5] / (1 << 20):.0f} MB ({most_memory[0]}, {most_memory[1]})")
 
+
+def kinds(rows: list[tuple]) -> dict[str, list[tuple]]:
+    """The runs by what each must do: refused, finished, an edge finished, long work; and
+    those that did neither (killed, or another status)."""
+    grouped: dict[str, list[tuple]] = {"refused (exit 2)": [], "accepted and finished": [],
+                                       "edges": [], "long work": [], "neither": []}
+    for row in rows:
+        name, status = row[0], row[2]
+        if name.startswith("edge"):
+            grouped["edges"].append(row)
+        elif name.startswith("long"):
+            grouped["long work"].append(row)
+        elif status == 2:
+            grouped["refused (exit 2)"].append(row)
+        elif status == 0:
+            grouped["accepted and finished"].append(row)
+        else:
+            grouped["neither"].append(row)
+    return grouped
 
 if __name__ == "__main__":
     main()
