@@ -317,7 +317,7 @@ def _expected(cell: Cell, report: str) -> Expected:
     aspect = 1.0 if cell.shows == "halfblocks" else (width / shape.columns) / (
         height / shape.rows)
     frame = SceneRenderer().render(scene, viewport[0] * shape.columns,
-                                   viewport[1] * shape.rows, aspect)
+                                   viewport[1] * shape.rows, pixel_aspect=aspect)
     if cell.colours == "256":
         frame = Palette256().mapped(frame, background)
     cells = CellRows(shape, exact=cell.colours == "256")

@@ -110,10 +110,10 @@ async def test_a_caption_s_row_is_repainted_only_when_it_changes(biceps, painted
 async def test_a_slow_picture_says_it_is_being_drawn_until_it_comes(biceps, monkeypatch):
     render = SceneRenderer.render
 
-    def slow_phong(renderer, scene, width, height, aspect=1.0):
+    def slow_phong(renderer, scene, width, height, framed=None, pixel_aspect=1.0):
         if scene.render.shading == "phong":  # as a first Phong frame compiles its kernels
             time.sleep(1.0)
-        return render(renderer, scene, width, height, aspect)
+        return render(renderer, scene, width, height, framed, pixel_aspect)
 
     monkeypatch.setattr(SceneRenderer, "render", slow_phong)
     async with biceps() as session:
