@@ -63,7 +63,7 @@ class Scene:
     render: RenderSettings
     hidden: frozenset[str] = frozenset()  # the names of the muscles not shown
     selected: int = 0  # which of the arm's muscles the node table edits (0: the driver)
-    marked: bool = False  # whether the picture marks the pick (`marked_albedo`): the app's do
+    marked: bool = False  # the picture marks the pick (`marked_albedo`), as the app's do
     picked_node: int | None = None  # the selected muscle's node ringed, if marked
 
     @classmethod
