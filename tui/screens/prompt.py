@@ -114,8 +114,11 @@ class Prompt(Dialog[tuple[Any, ...] | None]):
         return str(self.query_one(".dialog-error", Label).content)
 
     def _say(self, error: str) -> None:
+        labels = self.query(".dialog-error").results(Label)
+        label = next(labels, None)
+        if label is None:  # closed while its check ran: nobody to tell
+            return
         # Content, not a str: the message may quote a file name such as [b]x.toml.
-        label = self.query_one(".dialog-error", Label)
         label.update(Content(error))
         label.set_class(bool(error), "-shown")
 
@@ -155,7 +158,8 @@ class Prompt(Dialog[tuple[Any, ...] | None]):
             return
         finally:
             self._checking = False
-        self.dismiss(values)
+        if self in self.app.screen_stack:  # not closed while its check ran
+            self.dismiss(values)
 
     def action_cancel(self) -> None:
         # Not while the check works: it may be writing the file the dialog names, and
