@@ -7,9 +7,11 @@ import pytest
 from textual.widgets import RichLog
 from textual.widgets._footer import FooterKey
 
+from biceps.tui.screens.help import HelpScreen
 from biceps.tui.widgets.footer import FittedFooter
 from biceps.tui.widgets.node_table import NodeTable
 from conftest import screen_rows
+from waiting import until
 
 HELP = files("biceps.tui").joinpath("help.md").read_text(encoding="utf-8")
 
@@ -28,6 +30,19 @@ async def test_the_help_is_wrapped_beside_its_scrollbar(biceps, size):
         shown = " ".join(line.text.strip() for line in log.lines)
         first = " ".join(HELP.split("\n\n")[1].split()).replace("`", "")
         assert first in " ".join(shown.split())
+
+
+async def test_the_help_written_before_it_is_laid_out_still_shows_every_word(biceps,
+                                                                            monkeypatch):
+    # Opened under a storm of keys, the help wrote itself before it had a width, and
+    # showed an empty box.
+    monkeypatch.setattr(HelpScreen, "on_mount", lambda screen: screen._write())
+    async with biceps() as session:
+        await session.pilot.press("question_mark")
+        log = session.app.screen.query_one(RichLog)
+        await until(session.pilot, lambda: log.lines)
+        shown = " ".join(" ".join(line.text.strip() for line in log.lines).split())
+        assert " ".join(HELP.split("\n\n")[1].split()).replace("`", "") in shown
 
 
 def _footer_keys(session) -> list[FooterKey]:

@@ -45,6 +45,9 @@ class HelpScreen(Dialog[None]):
         if not logs:
             return  # closed again before it was laid out (? then escape at once)
         log = logs.first()
+        if not log.scrollable_content_region.width:  # not laid out yet: a busy app, a storm
+            self.call_after_refresh(self._write)
+            return
         with self.app.console.use_theme(headings):
             # As wide as the log's room beside its scrollbar, which RichLog would widen to
             # its min_width, 78, and cut off in a terminal of 80 columns.
