@@ -8,8 +8,8 @@ OpenSim loads ``shared/data/arm26.osim`` headless (it warns that the bone meshes
 are missing, which does not matter here), sets the shoulder to 0 and the elbow coordinate
 ``r_elbow_flex`` to every 10 degrees, and asks the muscle for its path length
 (``getLength``) and its moment arm about the elbow (``computeMomentArm``). ``--write``
-stores the curve as ``tests/engine/data/arm26_biclong.json``, which the tests compare the
-model with, so that they need no opensim; and the lengths of all six of arm26's muscles as
+stores the curve as ``engine/data/arm26_biclong.json``, which the tests compare the model
+with, so that they need no opensim, and which the app's plots draw beside the model's; and the lengths of all six of arm26's muscles as
 ``tests/engine/data/arm26_elbow.json``, which ``configs/elbow.toml``'s muscles are compared
 with, and prints how far each of those lies from arm26's.
 """
@@ -23,7 +23,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 MODEL = ROOT.parent / "shared" / "data" / "arm26.osim"
-OUTPUT = ROOT / "tests" / "engine" / "data" / "arm26_biclong.json"
+OUTPUT = ROOT / "engine" / "data" / "arm26_biclong.json"  # shipped: the app's plots draw it
 ELBOW_OUTPUT = ROOT / "tests" / "engine" / "data" / "arm26_elbow.json"
 FLEXIONS = list(range(0, 131, 10))
 ARM26_MUSCLES = ("BIClong", "BICshort", "BRA", "TRIlong", "TRIlat", "TRImed")

@@ -7,7 +7,8 @@ The app runs in a pseudo-terminal of 100x30 cells, from a scratch folder, so tha
 the editable install, by default; a wheel's, in a venv of its own; or another worktree's
 (a benchmark run from one tree with another tree's venv measures that venv's code).
 "UI" is the first screen with the side panel (the model's file name in its title),
-"picture" the first half-block pixel. "CPU" is what the app's processes (the children it
+"message" the first run's message in the viewport (cold only: ``tui/ahead.py``), "picture"
+the first half-block pixel. "CPU" is what the app's processes (the children it
 forked and waited for too) spent by the first picture, which other work on the machine
 disturbs less than the time. Cold: every run starts with a fresh, empty NUMBA_CACHE_DIR,
 as the first run after installing does. Runs of the two kinds alternate (and with
@@ -39,10 +40,14 @@ CONFIG = ROOT / "configs" / "biceps.toml"
 UPPER_HALF = "▀".encode()
 
 
+MESSAGE = b"Preparing the renderer"
+
+
 def first_run(python: str, cache: str, folder: str, linger: float = 0.0
-              ) -> tuple[float, float, float]:
-    """Seconds from start to the UI and to the first picture, and the CPU seconds spent;
-    the app is left running ``linger`` seconds more (to fill the cache)."""
+              ) -> tuple[float, float | None, float, float]:
+    """Seconds from start to the UI, to the first run's message (None if there was none)
+    and to the first picture, and the CPU seconds spent; the app is left running
+    ``linger`` seconds more (to fill the cache)."""
     master, slave = os.openpty()
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 100, 0, 0))
     environment = {**os.environ, "TERM": "xterm-256color", "COLORTERM": "truecolor",
@@ -53,19 +58,21 @@ def first_run(python: str, cache: str, folder: str, linger: float = 0.0
                                stdout=slave, stderr=slave, env=environment, cwd=folder,
                                start_new_session=True)
     os.close(slave)
-    output, ui = bytearray(), None
+    output, ui, message = bytearray(), None, None
     try:
         while time.perf_counter() - start < 180:
             if select.select([master], [], [], 0.01)[0]:
                 output += os.read(master, 1 << 16)
                 if ui is None and CONFIG.name.encode() in output:
                     ui = time.perf_counter() - start
+                if message is None and MESSAGE in output:
+                    message = time.perf_counter() - start
                 if UPPER_HALF in output:
                     picture = time.perf_counter() - start
                     time.sleep(linger)
                     os.killpg(process.pid, signal.SIGKILL)  # its children too, compiling
                     process.wait()
-                    return ui or picture, picture, _children_cpu() - used
+                    return ui or picture, message, picture, _children_cpu() - used
         raise RuntimeError("no picture within 180 s")
     finally:
         if process.returncode is None:
@@ -109,11 +116,13 @@ def main() -> None:
                     load = os.getloadavg()[0]
                     if cache == "cold":
                         with tempfile.TemporaryDirectory(dir=scratch) as empty:
-                            ui, picture, cpu = first_run(python, empty, scratch)
+                            ui, message, picture, cpu = first_run(python, empty, scratch)
                     else:
                         warm = str(Path(scratch) / f"warm {label}")
-                        ui, picture, cpu = first_run(python, warm, scratch)
+                        ui, message, picture, cpu = first_run(python, warm, scratch)
                     note(f"{label}{cache} cache: UI", ui, load)
+                    if message is not None:
+                        note(f"{label}{cache} cache: message", message, load)
                     note(f"{label}{cache} cache: picture", picture, load)
                     note(f"{label}{cache} cache: CPU", cpu, load)
     numpy = statistics.median(value for value, _ in rows["python -c 'import numpy'"])

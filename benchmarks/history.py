@@ -11,12 +11,10 @@ figure is the median over the runs, in seconds of this process's CPU time.
 
 from __future__ import annotations
 
-import argparse
-import json
 import statistics
-import subprocess
-import sys
 import time
+
+import interleaved
 
 EDITS = (1_000, 8_000)
 
@@ -42,24 +40,9 @@ def measure() -> dict[str, float]:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--runs", type=int, default=3)
-    parser.add_argument("--against", help="the Python of another installation of biceps")
-    parser.add_argument("--one-run", action="store_true", help=argparse.SUPPRESS)
-    args = parser.parse_args()
-    if args.one_run:
-        print(json.dumps(measure()))
-        return
-    pythons = {"this tree": sys.executable}
-    if args.against:
-        pythons["against"] = args.against
-    runs: dict[str, list[dict[str, float]]] = {tree: [] for tree in pythons}
-    for _ in range(args.runs):
-        for tree, python in pythons.items():
-            out = subprocess.run([python, __file__, "--one-run"], check=True,
-                                 capture_output=True, text=True).stdout
-            runs[tree].append(json.loads(out.splitlines()[-1]))
-    print(f"median of {args.runs} runs, CPU seconds" + "".join(f"{t:>12}" for t in pythons))
+    count, runs = interleaved.runs(__file__, measure, __doc__.splitlines()[0], 3)
+    pythons = list(runs)
+    print(f"median of {count} runs, CPU seconds" + "".join(f"{t:>12}" for t in pythons))
     medians = {tree: {edits: statistics.median(run[str(edits)] for run in runs[tree])
                       for edits in EDITS} for tree in pythons}
     for edits in EDITS:

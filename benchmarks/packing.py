@@ -14,12 +14,10 @@ disturbs it less than wall time).
 
 from __future__ import annotations
 
-import argparse
-import json
 import statistics
-import subprocess
-import sys
 import time
+
+import interleaved
 
 MODELS = ("biceps", "elbow")  # the bundled configs/biceps.toml and configs/elbow.toml
 STEPS = 15
@@ -52,29 +50,14 @@ def measure() -> dict[str, float]:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--runs", type=int, default=5)
-    parser.add_argument("--against", help="the Python of another installation of biceps")
-    parser.add_argument("--one-run", action="store_true", help=argparse.SUPPRESS)
-    args = parser.parse_args()
-    if args.one_run:
-        print(json.dumps(measure()))
-        return
-    pythons = {"this tree": sys.executable}
-    if args.against:
-        pythons["against"] = args.against
-    runs: dict[str, list[dict[str, float]]] = {tree: [] for tree in pythons}
-    for _ in range(args.runs):
-        for tree, python in pythons.items():
-            out = subprocess.run([python, __file__, "--one-run"], check=True,
-                                 capture_output=True, text=True).stdout
-            runs[tree].append(json.loads(out.splitlines()[-1]))
+    count, runs = interleaved.runs(__file__, measure, __doc__.splitlines()[0], 5)
+    pythons = list(runs)
     whats = list(runs["this tree"][0])
-    print(f"median of {args.runs} runs, ms CPU per mesh" + "".join(f"{t:>12}" for t in pythons)
-          + ("    ratio" if args.against else ""))
+    print(f"median of {count} runs, ms CPU per mesh" + "".join(f"{t:>12}" for t in pythons)
+          + ("    ratio" if len(pythons) > 1 else ""))
     for what in whats:
         medians = [statistics.median(run[what] for run in runs[tree]) for tree in pythons]
-        ratio = f"{medians[0] / medians[1]:>9.2f}" if args.against else ""
+        ratio = f"{medians[0] / medians[1]:>9.2f}" if len(pythons) > 1 else ""
         print(f"{what:<34}" + "".join(f"{m:>12.2f}" for m in medians) + ratio)
 
 

@@ -4,6 +4,7 @@ latency, CPU, and the lag left behind on slow links, beside rich-pixels in a ``S
     .venv/bin/python benchmarks/tui_pty.py [--sizes 200x60,400x100] [--seconds 4]
                                            [--links 5,20] [--link-size 200x60] [--quick]
                                            [--config configs/elbow.toml]
+                                           [--graphics halfblocks,sextants]
 
 Each app runs in a pseudo-terminal of the given size, with TERM=xterm-256color and
 COLORTERM=truecolor. This script plays the terminal: it answers the synchronized-output
@@ -23,6 +24,11 @@ Phases, for each app and size:
 - flood: the key at 120 a second, faster than any frame rate, so that the frame rate is
   the pipeline's own; gives fps, bytes per frame (all bytes written over the phase, divided
   by frames) and CPU (the app process, all threads, in % of one core).
+
+``--graphics`` measures biceps once with each of the text encoders named (its
+``--graphics``), one after the other, beside the baseline: half-blocks, and the finer
+sextants or quadrants, each with its bytes a frame over those of the half-blocks measured
+last before it at the same size ("/ biceps").
 
 Then, at one size, each emulated link (the pty read no faster than N Mbit/s): the key held
 at 30 a second, then released; the lag is the time from the last key to the end of the
@@ -315,8 +321,10 @@ def started(argv: list[str], columns: int, rows: int, start=Terminal.start) -> T
 # The apps
 
 
-def biceps_argv(config: Path) -> list[str]:
-    return [sys.executable, "-m", "biceps.cli", "app", str(config)]
+def biceps_argv(config: Path = CONFIG, graphics: str | None = None) -> list[str]:
+    """The app on ``config``, with ``--graphics graphics`` if given."""
+    return [sys.executable, "-m", "biceps.cli", "app", str(config),
+            *(["--graphics", graphics] if graphics else [])]
 
 
 def baseline_argv(config: Path) -> list[str]:
@@ -371,7 +379,10 @@ def run_rich_pixels_app(config: Path) -> None:
 # The table
 
 
-def measure_app(name: str, argv: list[str], size: tuple[int, int], seconds: float) -> str:
+def measure_app(name: str, argv: list[str], size: tuple[int, int], seconds: float,
+                half_blocks_kb: float | None = None) -> tuple[str, float]:
+    """The app's line of the table, and its KB a frame in the flood; ``half_blocks_kb``:
+    the half-blocks' at this size in this run, for the ratio."""
     terminal = started(argv, *size)
     try:
         typematic = hold(terminal, TYPEMATIC, seconds)
@@ -379,8 +390,11 @@ def measure_app(name: str, argv: list[str], size: tuple[int, int], seconds: floa
     finally:
         terminal.close()
     median, p95 = typematic.latency_ms
+    ratio = (f"{flood.kb_per_frame / half_blocks_kb:8.2f}x" if half_blocks_kb else
+             f"{'-':>9}")
     return (f"{name:<12} {size[0]}x{size[1]:<8} {typematic.fps:7.1f} {flood.fps:7.1f} "
-            f"{flood.kb_per_frame:9.1f} {median:8.1f} {p95:8.1f} {flood.cpu_percent:6.0f}")
+            f"{flood.kb_per_frame:9.1f} {ratio} {median:8.1f} {p95:8.1f} "
+            f"{flood.cpu_percent:6.0f}"), flood.kb_per_frame
 
 
 def measure_link(name: str, argv: list[str], size: tuple[int, int], megabits: float,
@@ -411,6 +425,9 @@ def main() -> None:
                         help="200x60 only, 2 s phases, 5 Mbit/s only")
     parser.add_argument("--config", type=Path, default=CONFIG,
                         help="the model both apps show (default configs/biceps.toml)")
+    parser.add_argument("--graphics", default="halfblocks",
+                        help="biceps's text encoders to measure, comma-separated: halfblocks, "
+                        "sextants, quadrants")
     parser.add_argument("--rich-pixels-app", action="store_true", help=argparse.SUPPRESS)
     arguments = parser.parse_args()
     if arguments.rich_pixels_app:
@@ -420,17 +437,25 @@ def main() -> None:
         arguments.sizes, arguments.seconds, arguments.links = "200x60", 2.0, "5"
     sizes = [tuple(map(int, size.split("x"))) for size in arguments.sizes.split(",")]
     link_size = tuple(map(int, arguments.link_size.split("x")))
-    apps = [("biceps", biceps_argv(arguments.config))]
+    apps = [("biceps" if graphics == "halfblocks" else graphics,
+             biceps_argv(arguments.config, graphics))
+            for graphics in arguments.graphics.split(",")]
     if not arguments.no_baseline:
         apps.append(("rich-pixels", baseline_argv(arguments.config)))
     print(f"model: {arguments.config}")
 
-    print(f"{'':<12} {'':<12} {'fps at keys/s':>15} {'':>9} {'key to picture':>17}")
-    print(f"{'app':<12} {'size':<12} {'30':>7} {'120':>7} {'KB/frame':>9} {'median':>8} "
-          f"{'p95 ms':>8} {'CPU %':>6}")
+    # The bytes a frame of each over the half-blocks' measured last at the same size.
+    print(f"{'':<12} {'':<12} {'fps at keys/s':>15} {'':>9} {'bytes':>9} "
+          f"{'key to picture':>17}")
+    print(f"{'app':<12} {'size':<12} {'30':>7} {'120':>7} {'KB/frame':>9} {'/ biceps':>9} "
+          f"{'median':>8} {'p95 ms':>8} {'CPU %':>6}")
     for size in sizes:
+        half_blocks_kb = None
         for name, argv in apps:
-            print(measure_app(name, argv, size, arguments.seconds), flush=True)
+            line, kb = measure_app(name, argv, size, arguments.seconds, half_blocks_kb)
+            if name == "biceps":
+                half_blocks_kb = kb
+            print(line, flush=True)
     print()
     print(f"{'app':<12} {'size':<10} {'link':>12} {'lag':>9} {'key ms':>10} {'answered':>9}")
     for megabits in map(float, arguments.links.split(",")):

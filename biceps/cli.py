@@ -33,7 +33,7 @@ from biceps.configs import (DEFAULT as DEFAULT_CONFIG, FOLDER as BUNDLED, file_o
 from biceps.engine.bounds import ANGLE, COORDINATE, SCALE, OutOfBounds, finite
 from biceps.engine.errors import BicepsError
 from biceps.engine.names import printable
-from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Graphics, drawing_threads
+from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Colors, Graphics, drawing_threads
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
@@ -64,6 +64,7 @@ TURN = _FiniteFloat(ANGLE.low, ANGLE.high)
 
 USAGE_ERROR = 2
 GRAPHICS = list(get_args(Graphics))
+COLORS = list(get_args(Colors))
 
 
 class _AppByDefault(click.Group):
@@ -284,10 +285,11 @@ def main() -> None:
 @config_argument
 @click.option(
     "--colors",
-    type=click.Choice(["auto", "truecolor", "256"]),
+    type=click.Choice(COLORS),
     default="auto",
     show_default=True,
-    help="Colour depth; auto honours TEXTUAL_COLOR_SYSTEM and COLORTERM.",
+    help="Colour depth; auto takes the config's render.colors, TEXTUAL_COLOR_SYSTEM, then "
+    "what the terminal answers (24-bit where it keeps a 24-bit colour), then COLORTERM.",
 )
 @click.option(
     "--fps",
@@ -363,14 +365,17 @@ def _check_terminal() -> None:
 @main.command(short_help="Say what this terminal can show, and what the app would use.")
 @click.option("--graphics", type=click.Choice(GRAPHICS), default="auto", show_default=True,
               help="The choice to explain, as the app would take it.")
+@click.option("--colors", type=click.Choice(COLORS), default="auto", show_default=True,
+              help="The colours to explain, as the app would take them.")
 @_refusals_exit_2
-def doctor(graphics: str) -> None:
+def doctor(graphics: str, colors: str) -> None:
     """Ask this terminal what it can show, and say what the app would use and why."""
-    from biceps.tui import detect
+    from biceps.tui import choose, detect
 
     answers, place = detect.ask(), detect.Place.here()
-    _print(f"biceps doctor: --graphics {graphics}\n"
-           + detect.report(graphics, answers, place, detect.choose(graphics, answers, place)))
+    _print(f"biceps doctor: --graphics {graphics} --colors {colors}\n"
+           + choose.report(graphics, answers, place, choose.choose(graphics, answers, place),
+                           choose.colours(colors, answers, place)))
 
 
 @main.command()
@@ -563,17 +568,17 @@ PNG_SIZE = (1920, 1080)
 @click.option("-o", "--output", type=click.Path(path_type=Path),
               help="The PNG file to write.")
 @click.option("--size", callback=_parse_size, metavar="WxH",
-              help=f"Picture size in pixels (default {PNG_SIZE[0]}x{PNG_SIZE[1]}; printed, the "
-              "terminal's width).")
+              help=f"Picture size in pixels (default {PNG_SIZE[0]}x{PNG_SIZE[1]}; printed, to "
+              "fit the window).")
 @click.option("--ansi", "printed", flag_value="ansi",
               help="Print the picture as half-block pixels instead, in colour even into a pipe.")
 @click.option("--kitty", "printed", flag_value="kitty",
               help="Print it in the kitty graphics protocol.")
 @click.option("--sixel", "printed", flag_value="sixel", help="Print it as sixel.")
 @click.option("--iterm", "printed", flag_value="iterm", help="Print it as an iTerm2 image.")
-@click.option("--colors", type=click.Choice(["auto", "truecolor", "256"]), default="auto",
-              show_default=True,
-              help="With --ansi: the colour codes; auto asks the environment (COLORTERM, TERM).")
+@click.option("--colors", type=click.Choice(COLORS), default="auto", show_default=True,
+              help="With --ansi: the colour codes; auto asks the terminal, if it is one, and "
+              "the environment (COLORTERM).")
 @pose_options
 @view_options
 @_refusals_exit_2
@@ -582,8 +587,9 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
              **overrides: Any) -> None:
     """Render CONFIG to a PNG file, with no terminal needed, or print it to this one.
 
-    --kitty, --sixel and --iterm print a picture as wide as the terminal in its own pixels
-    (as --ansi does in half-blocks), in that protocol, unless --size says otherwise.
+    --kitty, --sixel and --iterm print a picture that fits the window, in the terminal's own
+    pixels, in that protocol: as wide as the terminal at 16:9, or as tall as the window
+    where that would be taller (--ansi: as wide, in half-blocks); --size says otherwise.
     """
     from biceps.engine.cost import check_picture
     from biceps.engine.export import check_writable, write_png
@@ -611,11 +617,15 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
         prepare_kernels(scene.render.shading, supersampling(scene.render, height))
     if printed == "ansi":
         from biceps.engine.config import rgb
-        from biceps.tui.ansi import print_picture  # rich, only for this mode
+        from biceps.tui import choose, detect
+        from biceps.tui.ansi import print_picture
 
+        answers = detect.ask() if colors == "auto" and sys.stdout.isatty() else None
+        asked = scene.render.colors if colors == "auto" else colors
+        system = choose.colours(asked, answers, detect.Place.here()).system
         with _stdout(half_blocks=True):
             print_picture(lambda width, height: SceneRenderer().render(scene, width, height),
-                          rgb(scene.render.background), size, colors)
+                          rgb(scene.render.background), size, system)
         return
     if printed is not None:
         from biceps.tui.printed import print_image

@@ -28,6 +28,11 @@ def named(word: str) -> Path | None:
     return model if path.stem and model.is_file() else None
 
 
+def bundled_names() -> list[str]:
+    """The names the bundled models go by (``biceps``, ``elbow``, ...), sorted."""
+    return sorted(model.stem for model in FOLDER.glob("*.toml"))
+
+
 def file_or_bundled(path: Path) -> Path:
     """``path`` if there is such a file or folder, else the bundled model it names, if any
     (a file of that name where one works comes first), else ``path`` (for the reader to say

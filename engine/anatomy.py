@@ -77,9 +77,16 @@ def tendon_share(muscle: Muscle, path: MusclePath, flexion: float, mesh: Mesh) -
     (n,) float32 in [0, 1], 1 on the nodes that do not grow, 0 where a node grows at least
     half as much as the most growing one, linear between nodes."""
     growth = muscle.growth
+    share = 1.0 - np.clip(growth / (0.5 * growth.max()), 0.0, 1.0)
+    places = node_places(muscle, path, flexion, mesh.vertices)
+    return np.interp(places, np.arange(len(growth)), share).astype(np.float32)
+
+
+def node_places(muscle: Muscle, path: MusclePath, flexion: float,
+                vertices: np.ndarray) -> np.ndarray:
+    """Each of ``vertices`` (n, 3) (of the muscle's part) placed along the muscle, in
+    nodes: (n,) float64, 0 at the first node, ``node_count - 1`` at the last (the caps reach
+    a little past them)."""
     start, end = path.ends(flexion)
     chord = float(np.linalg.norm(end - start))
-    # Each vertex's place along the muscle, in nodes (the caps count as their end node).
-    place = (mesh.vertices - start) @ ((end - start) / chord) / chord * (len(growth) - 1)
-    share = 1.0 - np.clip(growth / (0.5 * growth.max()), 0.0, 1.0)
-    return np.interp(place, np.arange(len(growth)), share).astype(np.float32)
+    return (vertices - start) @ ((end - start) / chord) / chord * (muscle.node_count - 1)

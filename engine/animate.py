@@ -1,4 +1,5 @@
-"""The flex cycle as frames: the elbow swept between two angles, each pose rendered once.
+"""The flex cycle as frames: the elbow swept between two angles, each pose rendered once,
+all from one camera that fits every pose.
 
 A cycle of ``frames`` frames either plays from one angle to the other and starts again
 (``loop``), or goes there and comes back (``bounce``). A bounce shows each pose between the
@@ -76,11 +77,14 @@ def render_cycle(scene: Scene, cycle: FlexCycle, width: int, height: int,
     Refuses (see :func:`check_cycle`) before rendering anything.
     """
     check_cycle(scene, cycle, width, height)
-    arms = [scene.arm.at_flexion(float(flexion)) for flexion in cycle.poses()]
+    scenes = [scene.with_arm(scene.arm.at_flexion(float(flexion))) for flexion in cycle.poses()]
     renderer = SceneRenderer()
+    # One camera for the whole cycle, fitted to every pose: framed pose by pose, the
+    # shoulder would drift and the arm grow and shrink as the forearm swings.
+    framed = np.concatenate([renderer.outline(posed) for posed in scenes])
     pictures = []
-    for arm in arms:
-        pictures.append(renderer.render(scene.with_arm(arm), width, height).copy())
+    for posed in scenes:
+        pictures.append(renderer.render(posed, width, height, framed).copy())
         if progress is not None:
-            progress(len(pictures), len(arms))
+            progress(len(pictures), len(scenes))
     return [pictures[index] for index in cycle.order()]

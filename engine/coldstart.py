@@ -37,8 +37,9 @@ class Aside:
     """A forked child process compiling kernels into numba's cache. Thread-safe: one thread
     may wait for it while another stops it."""
 
-    def __init__(self, pid: int) -> None:
+    def __init__(self, pid: int, what: str = "") -> None:
         self._pid = pid
+        self.what = what  # what it compiles, in words: "the rasterizer"
         self._running = True
         self._lock = threading.Lock()
 
@@ -60,6 +61,11 @@ class Aside:
                 os.waitpid(self._pid, 0)
                 self._running = False
 
+    @property
+    def ended(self) -> bool:
+        """Whether the child has ended (its job done, or stopped)."""
+        return self._ended()
+
     def _ended(self) -> bool:
         with self._lock:
             if self._running and os.waitpid(self._pid, os.WNOHANG)[0]:
@@ -75,7 +81,7 @@ LATER = 19
 """The niceness of :func:`compile_later`'s children: the least share of a core Linux gives."""
 
 
-def compile_aside(job: Callable[[], None]) -> Aside | None:
+def compile_aside(job: Callable[[], None], what: str = "") -> Aside | None:
     """Run ``job`` (a function that compiles, or loads, kernels) in a forked child, where
     that helps and is safe: where processes fork, with two cores or more, and with no
     other thread running (a fork copies only the calling thread, and a lock held by
@@ -88,13 +94,20 @@ def compile_aside(job: Callable[[], None]) -> Aside | None:
     process, or in one that ends soon after.
 
     The child is kept for :func:`wait_for_aside`, which every renderer calls before its
-    first frame. Call it once for each of the jobs that take long.
+    first frame. Call it once for each of the jobs that take long; ``what``: what the job
+    compiles, in words, for a person waiting.
     """
-    aside = _fork(job, 0)
+    aside = _fork(job, 0, what)
     if aside is not None:
         with _asides_lock:
             _asides.append(aside)
     return aside
+
+
+def asides() -> list[Aside]:
+    """The children of :func:`compile_aside` that the next renderer will wait for."""
+    with _asides_lock:
+        return _asides[:]
 
 
 def compile_later(job: Callable[[], None]) -> Aside | None:
@@ -132,7 +145,7 @@ def _stop_asides() -> None:
         aside.stop()
 
 
-def _fork(job: Callable[[], None], niceness: int) -> Aside | None:
+def _fork(job: Callable[[], None], niceness: int, what: str = "") -> Aside | None:
     """`compile_aside`'s child, at ``niceness``; None where a fork would not help."""
     if not hasattr(os, "fork") or _cores() < 2 or threading.active_count() > 1:
         return None
@@ -145,7 +158,7 @@ def _fork(job: Callable[[], None], niceness: int) -> Aside | None:
             job()
         finally:
             os._exit(0)  # never back into the caller's code, its exit handlers or buffers
-    return Aside(pid)
+    return Aside(pid, what)
 
 
 def wait_for_aside() -> None:
@@ -166,7 +179,8 @@ def compile_rasterizer_aside(shading: str) -> Aside | None:
     the longest compilation of a frame, so the first to start."""
     from biceps.engine.render import Renderer
 
-    return compile_aside(lambda: Renderer().prepare(shading, vertex_stage=False))
+    return compile_aside(lambda: Renderer().prepare(shading, vertex_stage=False),
+                         "the rasterizer")
 
 
 def prepare_outline() -> None:

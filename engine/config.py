@@ -47,6 +47,7 @@ from biceps.engine.muscle import Muscle, VolumeMode
 from biceps.engine.names import printable
 from biceps.engine.settings import (
     COLOUR,
+    Colors,
     ColourBy,
     FIELD_OF_VIEW,
     Graphics,
@@ -254,6 +255,7 @@ class RenderTable(_Table):
     bone_colour: Colour = RenderSettings.bone_colour
     background: Colour = RenderSettings.background
     graphics: Graphics = RenderSettings.graphics
+    colors: Colors = RenderSettings.colors
     colour_by: ColourBy = RenderSettings.colour_by
 
     @classmethod

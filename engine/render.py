@@ -54,7 +54,7 @@ class Renderer:
 
     def render(self, vertices, normals, triangles, albedo, model_matrix, camera: Camera,
                light: Light, width: int, height: int, shading: str = "gouraud", ssaa: int = 1,
-               background=(0, 0, 0)) -> np.ndarray:
+               background=(0, 0, 0), pixel_aspect: float = 1.0) -> np.ndarray:
         """Draw a mesh and return the picture: (height, width, 3) uint8.
 
         vertices: (n, 3) float64 and normals: (n, 3) float64, model space.
@@ -68,6 +68,8 @@ class Renderer:
             highlight) or "overdraw" (see ``RASTERIZERS``).
         ssaa: render at ssaa x ssaa the size and average down (anti-aliasing), 1 for none.
         background: (r, g, b), 0 to 255.
+        pixel_aspect: a pixel's width over its height where the picture is shown (a
+            terminal's cell of 2 x 3 pixels, say, has pixels narrower than tall).
 
         The result is a read-only view of the renderer's own buffer: it stays valid until
         the next call, which overwrites it. Copy it to keep it.
@@ -95,7 +97,8 @@ class Renderer:
         self._reserve_vertices(len(vertices))
         full_h, full_w = self._depth.shape
 
-        view_projection, lighting = self._camera_and_light(camera, light, width / height)
+        view_projection, lighting = self._camera_and_light(camera, light,
+                                                           width * pixel_aspect / height)
         if not known:
             # The kernels take per-vertex arrays component-major (engine/raster/__init__.py).
             np.copyto(self._vertices, np.asarray(vertices).T)

@@ -17,14 +17,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from biceps.engine import coldstart
-from biceps.engine.anatomy import arm_parts, tendon_share
+from biceps.engine.anatomy import arm_parts, node_places, tendon_share
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, rgb
 from biceps.engine.cost import check_picture
 from biceps.engine.jit import exact, ngjit
 from biceps.engine.mesh import Mesh
 from biceps.engine.render import Renderer
-from biceps.engine.settings import RenderSettings, View
+from biceps.engine.settings import SUPERSAMPLING, RenderSettings, View
 from biceps.engine.transforms import (Camera, Light, model_matrix, scale_matrix,
                                       transform_points, translation_matrix)
 
@@ -33,15 +33,19 @@ FILL = 0.9
 
 
 SMALL_PICTURE = 120
-"""Pixel rows at or below which a picture is drawn 2 x 2 supersampled at least. In a small
-picture (80x24, or the arm zoomed out) the bones are about a pixel thick: sampled once a
-pixel they fall between pixel centres and break into pieces, where four samples a pixel
-keep them whole; and a picture this small costs little four times over."""
+"""Pixel rows at or below which a picture is drawn with twice the supersampling each way
+(2 x 2 without anti-aliasing, 4 x 4 with). In a small picture (80x24, or the arm zoomed
+out) the bones are about a pixel thick: sampled once a pixel they fall between pixel
+centres and break into pieces, where four samples a pixel keep them whole; and a picture
+this small costs little four or sixteen times over. Doubled rather than raised to 2, so
+that anti-aliasing on still smooths the edges further (``m`` changes the picture)."""
 
 
 def supersampling(render: RenderSettings, height: int) -> int:
     """The supersampling a picture ``height`` pixels tall is drawn with."""
-    return max(render.ssaa, 2) if height <= SMALL_PICTURE else render.ssaa
+    if height <= SMALL_PICTURE:
+        return min(2 * render.ssaa, int(SUPERSAMPLING.high))
+    return render.ssaa
 
 
 @dataclass(frozen=True)
@@ -59,6 +63,8 @@ class Scene:
     render: RenderSettings
     hidden: frozenset[str] = frozenset()  # the names of the muscles not shown
     selected: int = 0  # which of the arm's muscles the node table edits (0: the driver)
+    marked: bool = False  # the picture marks the pick (`marked_albedo`), as the app's do
+    picked_node: int | None = None  # the selected muscle's node ringed, if marked
 
     @classmethod
     def of(cls, config: Config) -> Scene:
@@ -80,6 +86,14 @@ class Scene:
         """The scene with muscle ``index`` of the arm's (counted round) picked for editing."""
         return replace(self, selected=index % len(self.arm.names))
 
+    def with_picked_node(self, node: int | None) -> Scene:
+        """The scene with node ``node`` of the selected muscle ringed (None: no node)."""
+        return replace(self, picked_node=node)
+
+    def unmarked(self) -> Scene:
+        """The scene as a picture of the model alone, without the pick marked (an export)."""
+        return replace(self, marked=False)
+
     def with_hidden(self, name: str, hide: bool) -> Scene:
         """The scene with muscle ``name`` hidden or shown."""
         return replace(self, hidden=self.hidden | {name} if hide else self.hidden - {name})
@@ -100,12 +114,16 @@ def companion_segments(segments: int) -> int:
     return max(3, round(segments * COMPANION_DETAIL))
 
 
+Spans = dict[str, tuple[int, int]]
+"""Each part's vertices in a scene's mesh, by its name: the first and one past the last."""
+
+
 def scene_mesh(arm: Arm, render: RenderSettings,
-               hidden: frozenset[str] = frozenset()) -> tuple[Mesh, np.ndarray]:
-    """The arm as one world-space mesh, and its per-vertex albedo (n, 3) float32 in [0, 1]:
-    the bones in the bone colour, each muscle not ``hidden`` with its belly in its own
-    colour (or its strain's, see `strain_colour`) blending into the tendon colour towards
-    its ends."""
+               hidden: frozenset[str] = frozenset()) -> tuple[Mesh, np.ndarray, Spans]:
+    """The arm as one world-space mesh, its per-vertex albedo (n, 3) float32 in [0, 1] and
+    its parts' spans: the bones in the bone colour, each muscle not ``hidden`` with its
+    belly in its own colour (or its strain's, see `strain_colour`) blending into the tendon
+    colour towards its ends."""
     parts = arm_parts(arm, render.segments, hidden, companion_segments(render.segments))
     ends = np.cumsum([len(mesh.vertices) for mesh in parts.values()])
     spans = dict(zip(parts, zip([0, *ends[:-1]], ends)))
@@ -127,7 +145,37 @@ def scene_mesh(arm: Arm, render: RenderSettings,
         for channel, out in enumerate(albedo[:, start:end]):
             np.multiply(not_tendon, belly[channel], out=out)
             out += tendon * tendon_colour[channel]
-    return Mesh.concatenate(list(parts.values())), albedo.T
+    return Mesh.concatenate(list(parts.values())), albedo.T, spans
+
+
+PICK_LIGHTER = 0.4
+"""How far the picked muscle's colour goes towards white, among others: enough to find it
+at a glance in 256 colours, not so far that its shading flattens."""
+RING_COLOUR = np.array([1.0, 0.82, 0.0], dtype=np.float32)
+"""The picked node's ring: a yellow no muscle, tendon or bone is drawn in."""
+
+
+def marked_albedo(scene: Scene, mesh: Mesh, albedo: np.ndarray, spans: Spans) -> np.ndarray:
+    """``albedo`` (n, 3) of ``scene``'s ``mesh`` with its pick marked, a new array: the
+    selected muscle lighter when other muscles are shown, and its picked node's ring (the
+    vertices within half a node of it, fading out from it) in `RING_COLOUR`."""
+    arm = scene.arm
+    name = arm.names[scene.selected]
+    if name in scene.hidden:
+        return albedo
+    start, end = spans[name]
+    marked = albedo.copy()
+    part = marked[start:end]
+    if len(arm.names) - len(scene.hidden) > 1:
+        part += PICK_LIGHTER * (1.0 - part)
+    muscle = arm.muscles[scene.selected]
+    node = scene.picked_node
+    if node is not None and 0 <= node < muscle.node_count:
+        places = node_places(muscle, arm.paths[scene.selected], arm.flexion,
+                             mesh.vertices[start:end])
+        ring = np.clip(1.0 - 2.0 * np.abs(places - node), 0.0, 1.0).astype(np.float32)
+        part += ring[:, None] * (RING_COLOUR - part)
+    return marked
 
 
 STRAIN_SPAN = 0.2
@@ -292,24 +340,51 @@ class SceneRenderer:
         coldstart.wait_for_aside()  # load, rather than compile again, what a child compiles
         self._renderer = Renderer()
         self._mesh_key: tuple | None = None
-        self._mesh: tuple[Mesh, np.ndarray] | None = None
+        self._mesh: tuple[Mesh, np.ndarray, Spans] | None = None
         self._outline: np.ndarray | None = None
+        self._marked_key: tuple | None = None
+        self._marked: np.ndarray | None = None
 
-    def render(self, scene: Scene, width: int, height: int) -> np.ndarray:
+    def render(self, scene: Scene, width: int, height: int,
+               framed: np.ndarray | None = None, pixel_aspect: float = 1.0) -> np.ndarray:
         """The picture of ``scene``: (height, width, 3) uint8, valid until the next call;
-        :class:`BicepsError` if its buffers would take more memory than the bound."""
+        :class:`BicepsError` if its buffers would take more memory than the bound. Its
+        pixels are shown ``pixel_aspect`` as wide as they are tall.
+
+        ``framed``: the points (k, 3), world space at rest, the camera fits to the picture
+        (and the view turns about the middle of); the scene's own `outline` if None. A
+        cycle passes the outlines of all its poses, so that every frame has one camera.
+        """
         ssaa = supersampling(scene.render, height)
         check_picture(width, height, ssaa)
         mesh, albedo = self._mesh_of(scene)
-        camera, model = view_camera(scene.view, self._outline, width / height)
+        framed = self._outline if framed is None else framed
+        camera, model = view_camera(scene.view, framed, width * pixel_aspect / height)
         light = zoomed_light(scene.light, scene.view.scale, camera)
         return self._renderer.render(
             mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,
             light, width, height, shading=scene.render.shading,
-            ssaa=ssaa, background=rgb(scene.render.background),
+            ssaa=ssaa, background=rgb(scene.render.background), pixel_aspect=pixel_aspect,
         )  # fmt: skip
 
+    def outline(self, scene: Scene) -> np.ndarray:
+        """The `outline` (k, 3) of ``scene``'s mesh, world space at rest."""
+        self._unmarked_mesh_of(scene)
+        return self._outline
+
     def _mesh_of(self, scene: Scene) -> tuple[Mesh, np.ndarray]:
+        """The mesh of ``scene`` and its albedo, marked if the scene is."""
+        mesh, albedo, spans = self._unmarked_mesh_of(scene)
+        if not scene.marked:
+            return mesh, albedo
+        # Moving the node table's cursor colours a few vertices: the mesh is kept.
+        key = (self._mesh_key, scene.selected, scene.picked_node)
+        if key != self._marked_key:
+            self._marked = marked_albedo(scene, mesh, albedo, spans)
+            self._marked_key = key
+        return mesh, self._marked
+
+    def _unmarked_mesh_of(self, scene: Scene) -> tuple[Mesh, np.ndarray, Spans]:
         # Turning, moving and lighting leave the mesh as it was: rebuild it only when the
         # arm or its look changes.
         render = scene.render

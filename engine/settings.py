@@ -27,10 +27,14 @@ SHADINGS = (*get_args(Shading), "overdraw")
 """Every shading the renderer draws (``engine/render.py``): also "overdraw", a debugging view
 that counts the triangles on each pixel, which a file cannot name and so cannot be saved."""
 
-Graphics = Literal["halfblocks", "auto", "kitty", "sixel", "iterm"]
-"""How the picture reaches the terminal (``tui/detect.py``): half-block characters, which
-every terminal shows; one of the protocols for real pixels; or ``auto``, the best the
-terminal answers that it has."""
+Graphics = Literal["halfblocks", "auto", "kitty", "sixel", "iterm", "sextants", "quadrants"]
+"""How the picture reaches the terminal (``tui/choose.py``): half-block characters, which
+every terminal shows; one of the protocols for real pixels; finer text cells, sextants or
+quadrants; or ``auto``, the best the terminal answers that it has."""
+
+Colors = Literal["auto", "truecolor", "256"]
+"""The colours the picture goes out in: 24-bit, xterm's 256, or ``auto``, what the terminal
+answers that it keeps (``tui/choose.py``)."""
 
 ColourBy = Literal["muscle", "strain"]
 """What colours each muscle's belly: its own colour, or how far it is from its rest length."""
@@ -155,10 +159,10 @@ SUPERSAMPLING = Limits(1, 4)
 class RenderSettings:
     """How the picture is drawn: the vertices around each part's axis, the shading model,
     the supersampling factor (``ssaa`` x ``ssaa`` samples a pixel), the colours (the
-    muscle's belly, its tendons, the bones, the background), and how the app sends it to
-    the terminal (``graphics``), and whether each muscle shows its own colour or its strain
-    (``colour_by``: "strain" is warm where a muscle is shorter than at rest, cool where
-    longer)."""
+    muscle's belly, its tendons, the bones, the background), how the app sends it to
+    the terminal (``graphics``) and in which colours (``colors``), and whether each muscle
+    shows its own colour or its strain (``colour_by``: "strain" is warm where a muscle is
+    shorter than at rest, cool where longer)."""
 
     segments: int = 48
     shading: str = "gouraud"
@@ -168,10 +172,11 @@ class RenderSettings:
     bone_colour: str = "#e3d9c0"
     background: str = "#12161c"
     graphics: str = "halfblocks"
+    colors: str = "auto"
     colour_by: str = "muscle"
 
     def __post_init__(self) -> None:
         settle(self, "render", segments=integer(SEGMENTS), shading=one_of(SHADINGS),
                ssaa=integer(SUPERSAMPLING), muscle_colour=colour, tendon_colour=colour,
                bone_colour=colour, background=colour, graphics=one_of(get_args(Graphics)),
-               colour_by=one_of(get_args(ColourBy)))
+               colors=one_of(get_args(Colors)), colour_by=one_of(get_args(ColourBy)))

@@ -52,3 +52,20 @@ def pieces(frame: np.ndarray, background: tuple[int, int, int]) -> int:
         found |= piece
         count += 1
     return count
+
+
+def cell_pixels(shape, cells: np.ndarray) -> np.ndarray:
+    """The pixels that text cells of ``shape`` (tui/cells.py) show, each in its cell's
+    foreground or background colour: (rows h, columns w, 3) uint8 for (h, w) cells."""
+    from biceps.tui.cells import unpacked
+
+    height, width = cells.shape
+    pixels = np.zeros((height * shape.rows, width * shape.columns, 3), np.uint8)
+    for (y, x), cell in np.ndenumerate(cells):
+        fore, back, pattern = unpacked(int(cell))
+        for index in range(shape.pixels):
+            row, column = divmod(index, shape.columns)
+            colour = fore if pattern >> index & 1 else back
+            pixels[y * shape.rows + row, x * shape.columns + column] = (
+                colour >> 16, colour >> 8 & 255, colour & 255)
+    return pixels

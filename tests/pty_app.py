@@ -74,11 +74,11 @@ def _read_until_picture(master: int, output: bytearray, deadline: float) -> None
     quiet_since = None
     while time.monotonic() < deadline:
         if select.select([master], [], [], 0.05)[0]:
-            answered = DEVICE_ATTRIBUTES_QUERY in output
+            asked = output.count(DEVICE_ATTRIBUTES_QUERY)
             output += os.read(master, 1 << 16)
-            if not answered and DEVICE_ATTRIBUTES_QUERY in output:
-                # The app asks what the terminal can show (tui/detect.py): a VT220's answer.
-                os.write(master, b"\x1b[?62;22c")
+            # The app asks what the terminal can show (tui/detect.py), in rounds that end
+            # with the device attributes: a VT220's answer to each.
+            os.write(master, b"\x1b[?62;22c" * (output.count(DEVICE_ATTRIBUTES_QUERY) - asked))
             quiet_since = None
         elif UPPER_HALF in output:
             # The picture has begun: the frame is whole once the output pauses.

@@ -11,6 +11,7 @@ import re
 from dataclasses import dataclass, field
 
 import numpy as np
+from rich._palettes import EIGHT_BIT_PALETTE
 
 TOKEN = re.compile(
     r"\x1b\[(?P<csi>[0-9;?<>=]*)(?P<final>[@-~])"  # CSI
@@ -114,5 +115,9 @@ class Screen:
 
 
 def _rgb(colour: tuple[int, ...]) -> tuple[int, int, int]:
-    assert colour[:1] == (2,), f"not a 24-bit colour: {colour}"
+    """A colour's codes as RGB: 24-bit, or an entry of xterm's 256 colours above the 16
+    system ones (as Rich has the palette)."""
+    if colour[:1] == (5,) and colour[1] >= 16:
+        return tuple(EIGHT_BIT_PALETTE[colour[1]])
+    assert colour[:1] == (2,), f"not a 24-bit colour or a palette entry: {colour}"
     return colour[1:]

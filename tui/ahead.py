@@ -4,10 +4,14 @@ On a first run (an empty numba cache) the first picture waits for numba to compi
 frame runs, and Textual's first screen for the output minimizer (``tui/sgr.py``). Each
 compiles in a forked child of its own (``engine/coldstart.py``): the rasterizer, much the
 longest, in one, which the command line starts as soon as it has read the config
-(``biceps/cli.py``); the framing, the vertex stage, the downsampling and the encoder in
-another. This process first compiles the outline's small kernel, which also tells a warm
-cache from a cold one: with a warm cache no other child starts, and the rasterizer's is
-stopped. The render thread waits for the children and loads what they compiled.
+(``biceps/cli.py``); the framing, the vertex stage, the downsampling, the 256-colour
+palette where the terminal has no more, and the encoder in another. This process first
+compiles the outline's small kernel, which also tells a warm cache from a cold one: with a
+warm cache no other child starts, and the rasterizer's is stopped. The render thread waits
+for the children and loads what they compiled.
+
+On a first run the viewport says so (:func:`preparing`), with the parts done and the time
+so far, until the first picture comes; the keys work meanwhile.
 
 The minimizer only saves bytes: its child runs at the lowest priority, so that it takes no
 share of a core from the frame's, and until it is done the app writes Textual's output as
@@ -17,6 +21,8 @@ it is, which the terminal shows the same.
 from __future__ import annotations
 
 import threading
+import time
+from dataclasses import dataclass
 
 import numpy as np
 from textual.driver import Driver
@@ -25,24 +31,56 @@ from biceps.engine import coldstart
 from biceps.engine.config import Config
 from biceps.engine.scene import supersampling
 from biceps.tui.encoder import PictureEncoder
+from biceps.tui.palette import Palette256
 from biceps.tui.sgr import lean, minimized
 
 _minimizer_ready = threading.Event()
 _minimizer_ready.set()  # unless a child is compiling it
 
 
-def compile_ahead(config: Config, encoder: PictureEncoder) -> None:
+@dataclass(frozen=True)
+class Preparation:
+    """A first run's compilation for the first picture: since when, and its children."""
+
+    started: float  # monotonic seconds
+    children: tuple[coldstart.Aside, ...]  # those the first picture waits for
+
+    def parts(self) -> tuple[int, int]:
+        """The parts done and all of them: each child's, then the first picture's own."""
+        return sum(child.ended for child in self.children), len(self.children) + 1
+
+    def compiling(self) -> list[str]:
+        """What the children that have not ended compile, in words."""
+        return [child.what for child in self.children if not child.ended]
+
+
+_preparation: Preparation | None = None
+
+
+def preparing() -> Preparation | None:
+    """This process's first run's compilation (:func:`compile_ahead` found the cache
+    cold), or None: a warm cache, or no compilation ahead."""
+    return _preparation
+
+
+def compile_ahead(config: Config, encoder: PictureEncoder, palette: bool = False) -> None:
     """Once the rasterizer's child is on its way (see the module's docstring), probe the
     cache with the outline's kernel; if it is cold, start the children compiling the rest
-    of the app's first frame of ``config`` through ``encoder``, and the minimizer. Call it
-    before any other thread starts (see `coldstart.compile_aside`)."""
+    of the app's first frame of ``config`` through ``encoder`` (mapped onto the 256-colour
+    palette first, if ``palette``), and the minimizer, and say so (:func:`preparing`).
+    Call it before any other thread starts (see `coldstart.compile_aside`)."""
+    global _preparation
+    started = time.monotonic()
     if coldstart.stop_aside_if_cached(coldstart.prepare_outline):
         return  # this process loads the kernels as it goes, in milliseconds
     # A frame of one cell: so small that it is supersampled, as the app's first most
     # likely is (engine/scene.py).
     shading = config.render.shading
     ssaa = supersampling(config.render, encoder.cell.height)
-    coldstart.compile_aside(lambda: _prepare_around_the_rasterizer(shading, ssaa, encoder))
+    coldstart.compile_aside(
+        lambda: _prepare_around_the_rasterizer(shading, ssaa, encoder, palette),
+        "the rest of a frame")
+    _preparation = Preparation(started, tuple(coldstart.asides()))
     minimizer = coldstart.compile_later(_load_minimizer)
     if minimizer is not None:
         _minimizer_ready.clear()
@@ -67,13 +105,16 @@ def lean_once_ready(driver_class: type[Driver]) -> type[Driver]:
     return LeanOnceReady
 
 
-def _prepare_around_the_rasterizer(shading: str, ssaa: int,
-                                   encoder: PictureEncoder) -> None:
+def _prepare_around_the_rasterizer(shading: str, ssaa: int, encoder: PictureEncoder,
+                                   palette: bool) -> None:
     """What a frame runs before and after the rasterizer (`coldstart`'s), and the encoder,
-    given a read-only frame as the renderer returns."""
+    given a read-only frame as the renderer returns (mapped onto the palette, if
+    ``palette``)."""
     coldstart.prepare_around_the_rasterizer(shading, ssaa)
     frame = np.zeros((encoder.cell.height, encoder.cell.width, 3), np.uint8)
     frame.flags.writeable = False
+    if palette:
+        frame = Palette256().mapped(frame, (0, 0, 0))
     encoder.encode(frame)
 
 

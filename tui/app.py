@@ -29,9 +29,10 @@ from textual.message import Message
 from textual.notifications import SeverityLevel
 from textual.reactive import var
 from textual.screen import Screen
+from textual.suggester import Suggester
 from textual.theme import ThemeProvider
 
-from biceps.configs import FOLDER as BUNDLED_MODELS, file_or_bundled
+from biceps.configs import FOLDER as BUNDLED_MODELS, bundled_names, file_or_bundled
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, load_config, save_config
 from biceps.engine.cost import check_model, check_picture
@@ -41,6 +42,7 @@ from biceps.engine.files import same_file
 from biceps.engine.names import printable
 from biceps.engine.scene import Scene, SceneRenderer, supersampling
 from biceps.tui import detect
+from biceps.tui.choose import TEXT, choose, colours, notice
 from biceps.tui.ahead import compile_ahead, lean_once_ready
 from biceps.tui.changes import (
     COARSE_STEP,
@@ -72,7 +74,7 @@ from biceps.tui.screens.main import MainScreen
 from biceps.tui.screens.once import Palette
 from biceps.tui.screens.prompt import Field, Prompt
 from biceps.tui.screens.record import RecordPrompt, as_recording
-from biceps.tui.suggest import PathSuggester
+from biceps.tui.suggest import ModelSuggester, PathSuggester
 from biceps.tui.terminal_input import read_terminal_leniently
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import Plots
@@ -140,13 +142,14 @@ class BicepsApp(App[None]):
         Binding("ctrl+z", "undo", "Undo", show=False),
         Binding("ctrl+y", "redo", "Redo", show=False),
         Binding("ctrl+r", "revert", "Revert to the saved file", show=False),
-        Binding("e", "export", "Export"),
-        Binding("p", "toggle_plots", "Plots on or off", show=False),
-        Binding("v", "record", "Record the flex cycle", show=False),
+        # Shown in the footer in a word, and by their tooltips in the palette (commands.py).
         Binding("ctrl+s", "save", "Save"),
+        Binding("e", "export", "Export", tooltip="Export a PNG"),
+        Binding("p", "toggle_plots", "Plots", tooltip="Plots on or off"),
+        Binding("v", "record", "Record", tooltip="Record the flex cycle"),
         Binding("ctrl+d", "save_as", "Save as", show=False),
         Binding("ctrl+o", "open", "Open", show=False),
-        Binding("question_mark,f1", "help", "Help"),
+        Binding("question_mark,f1", "help", "Help", tooltip="Help: every key"),
         Binding("q", "quit", "Quit"),
         # Quits from anywhere, a dialog too: a priority binding (see action_quit_in_turn).
         Binding("ctrl+q", "quit_in_turn", show=False, priority=True),
@@ -161,7 +164,7 @@ class BicepsApp(App[None]):
         """``fps``: the most frames a second the picture is redrawn at, up to Textual's
         limit (``TEXTUAL_FPS``, 60 unless set), the cap if None; ``encoder``: how the
         picture reaches the terminal (default: half-blocks); ``notice``: said once the app
-        is up (what the terminal could show, see tui/detect.py). ``rescue``: start on the
+        is up (what the terminal could show, see tui/choose.py). ``rescue``: start on the
         model an app left when it ended on an error, and offer to save it."""
         super().__init__()
         # Textual paints no more often than its limit, but the viewport writes most frames
@@ -174,17 +177,17 @@ class BicepsApp(App[None]):
         self._history = History()
         self.failure: str | None = None  # the error this app ended on, if it did
         self._rescue = rescue
+        self.config: Config | None = None
+        self._last_recording: Recording | None = None
         if rescue is None:
             self._adopt(config, Scene.of(config))
             scene = self._saved
         else:
             self._adopt(rescue.config, rescue.saved)
-            scene = rescue.scene
+            scene = replace(rescue.scene, marked=True)
         self.set_reactive(BicepsApp.scene, scene)
         self.set_reactive(BicepsApp.unsaved, has_unsaved_edits(scene, self._saved))
-        self._export_path = f"{self.config.path.stem}.png"
         self._export_size = "1920x1080"
-        self._last_recording: Recording | None = None
         self._notified_until: dict[str, float] = {}
         self._saving = asyncio.Lock()
         self._asking = False  # a dialog is open, or about to open (see _ask)
@@ -427,6 +430,11 @@ class BicepsApp(App[None]):
     def _zoom(self, message: Viewport.Zoomed) -> None:
         self.action_zoom(message.steps)
 
+    @on(NodeTable.NodePicked)
+    def _ring_node(self, message: NodeTable.NodePicked) -> None:
+        if message.node != self.scene.picked_node:
+            self.scene = self.scene.with_picked_node(message.node)
+
     @on(NodeTable.ChangeRequested)
     def _edit_muscle(self, message: NodeTable.ChangeRequested) -> None:
         arm, index = self.scene.arm, self.scene.selected
@@ -482,8 +490,17 @@ class BicepsApp(App[None]):
             return await self._save_as()
         return await self._save()
 
-    async def _save(self, path: Path | None = None) -> bool:
-        """Save the scene to ``path`` (the file it came from if None); True if saved.
+    async def _save(self) -> bool:
+        """Save to the file the model came from; True if saved, else says why not."""
+        try:
+            return await self._write_config()
+        except BicepsError as error:
+            self.notify(str(error), title="Not saved", severity="error", markup=False)
+            return False
+
+    async def _write_config(self, path: Path | None = None) -> bool:
+        """Save the scene to ``path`` (the file it came from if None); True if saved, False
+        if the person chose not to replace changes made on disk; raises BicepsError.
 
         The work runs in a thread, so a save of a large muscle does not stop the app, and
         one save at a time, each from the file the last one left. A file changed on disk
@@ -494,51 +511,58 @@ class BicepsApp(App[None]):
             save = partial(save_config, config, scene.arm, scene.view, scene.light, scene.render,
                            path)
             try:
-                try:
-                    saved = await asyncio.to_thread(save)
-                except FileChanged:
-                    if not await self._confirm_overwrite(config.path):
-                        return False
-                    saved = await asyncio.to_thread(partial(save, overwrite=True))
-            except BicepsError as error:
-                self.notify(str(error), title="Not saved", severity="error", markup=False)
-                return False
+                saved = await asyncio.to_thread(save)
+            except FileChanged:
+                if not await self._confirm_overwrite(config.path):
+                    return False
+                saved = await asyncio.to_thread(partial(save, overwrite=True))
             self._adopt(saved, scene)
             self.unsaved = has_unsaved_edits(self.scene, scene)  # edits made meanwhile
             self.notify(f"Saved {printable(saved.path.resolve())}", markup=False)
             return True
 
     def _adopt(self, config: Config, saved: Scene) -> None:
-        """Make ``config`` the file the app edits, ``saved`` the scene it holds."""
+        """Make ``config`` the file the app edits, ``saved`` the scene it holds; the names
+        export and record suggest follow a new file's."""
+        if self.config is None or config.path != self.config.path:
+            stem = config.path.stem
+            self._export_path = f"{stem}.png"
+            if self._last_recording is not None:
+                suffix = self._last_recording.path.suffix
+                self._last_recording = replace(self._last_recording,
+                                               path=Path(f"{stem}-flex{suffix}"))
         self.config = config
-        self._saved = saved
+        self._saved = replace(saved, marked=True)  # the app's pictures mark the pick
         self.sub_title = printable(config.path.name)
 
-    def _config_file_field(self, path: Path) -> Field:
+    def _config_file_field(self, path: Path, suggester: Suggester | None = None) -> Field:
         """The dialogs' field for a configuration file, ``path`` to start with."""
-        return Field("File", printable(path), parse_path, PathSuggester((".toml",)))
+        return Field("File", printable(path), parse_path,
+                     suggester or PathSuggester((".toml",)))
 
     def action_save_as(self) -> None:
         self._ask(self._save_as)
 
     async def _save_as(self) -> bool:
-        path = self.config.path
+        """Ask for a file and save the model there; True if saved."""
+        path, title, note = self.config.path, "Save as", ""
         if _bundled(path):
             path = Path.cwd() / path.name  # a copy of one's own, where one works
-        field = self._config_file_field(path)
-        while True:
-            answer = await self.push_screen_wait(
-                Prompt("Save as", [field], accept="Save",
-                       check=lambda path: check_writable(path, ".toml")))
-            if answer is None:
-                return False
-            (path,) = answer
-            field = replace(field, text=str(path))  # if asked again, as typed
+            title = "Save a copy"
+            note = (f"{printable(self.config.path.name)} is a bundled model, part of the "
+                    "installation, which an upgrade replaces: save your copy where you work.")
+
+        async def save(path: Path) -> bool:
+            check_writable(path, ".toml")
             if (os.path.exists(path) and not same_file(path, self.config.path)
                     and not await self._confirm_replace(path)):
-                continue
-            if await self._save(path):
-                return True
+                return False
+            return await self._write_config(path)
+
+        answer = await self.push_screen_wait(
+            Prompt(title, [self._config_file_field(path)], accept="Save", check=save,
+                   note=note))
+        return answer is not None
 
     def action_open(self) -> None:
         self._ask(self._open)
@@ -546,42 +570,44 @@ class BicepsApp(App[None]):
     async def _open(self) -> None:
         # The file open now, to change: a bundled model's own path, for there is nothing
         # else to open where one works; a bundled model may be named (toy, configs/toy.toml).
-        field = self._config_file_field(self.config.path)
+        opened: list[Config] = []
+
+        async def read(path: Path) -> None:
+            opened.append(await asyncio.to_thread(load_config, file_or_bundled(path)))
+
+        field = self._config_file_field(self.config.path, ModelSuggester())
         answer = await self.push_screen_wait(
-            Prompt("Open a configuration", [field], accept="Open"))
+            Prompt("Open a configuration", [field], accept="Open", check=read,
+                   note="A file, or a bundled model by its name: "
+                        f"{', '.join(bundled_names())}."))
         if answer is None:
             return
-        try:
-            config = load_config(file_or_bundled(answer[0]))
-        except BicepsError as error:
-            self.notify(str(error), title="Not opened", severity="error", markup=False)
-            return
+        (config,) = opened
         if self.unsaved and not await self._unsaved_edits_settled("open"):
             return
         self._adopt(config, Scene.of(config))
         self._history.clear()
         self.scene = self._saved
-        self._export_path = f"{config.path.stem}.png"
 
     def action_export(self) -> None:
         self._ask(self._export)
 
     async def _export(self) -> None:
-        while True:
-            fields = [
-                Field("File", printable(self._export_path), parse_path, PathSuggester((".png",))),
-                Field("Size in pixels", self._export_size, parse_size),
-            ]
-            prompt = Prompt("Export a PNG", fields, accept="Export",
-                            check=lambda path, size: self._check_export(path, *size))
-            answer = await self.push_screen_wait(prompt)
-            if answer is None:
-                return
-            path, (width, height) = answer
-            self._export_path, self._export_size = str(path), f"{width}x{height}"
-            if not os.path.exists(path) or await self._confirm_replace(path):
-                break
-        self._write_picture(self.scene, path, width, height)
+        async def check(path: Path, size: tuple[int, int]) -> bool:
+            self._check_export(path, *size)
+            return not os.path.exists(path) or await self._confirm_replace(path)
+
+        fields = [
+            Field("File", printable(self._export_path), parse_path, PathSuggester((".png",))),
+            Field("Size in pixels", self._export_size, parse_size),
+        ]
+        answer = await self.push_screen_wait(
+            Prompt("Export a PNG", fields, accept="Export", check=check))
+        if answer is None:
+            return
+        path, (width, height) = answer
+        self._export_path, self._export_size = str(path), f"{width}x{height}"
+        self._write_picture(self.scene.unmarked(), path, width, height)
 
     def _check_export(self, path: Path, width: int, height: int) -> None:
         check_writable(path, ".png", read=self.config.path)
@@ -617,15 +643,13 @@ class BicepsApp(App[None]):
             self._refuse(f"Still recording {printable(recorder.busy.path)}; wait for it to finish")
             return
         default = Path(f"{self.config.path.stem}-flex.gif")
-        while True:
-            answer = await self.push_screen_wait(
-                RecordPrompt(self.scene, default, self._last_recording, read=self.config.path))
-            if answer is None:
-                return
-            recording = self._last_recording = as_recording(*answer)  # if asked again
-            if not os.path.exists(recording.path) or await self._confirm_replace(recording.path):
-                break
-        recorder.record(self.scene, recording)
+        answer = await self.push_screen_wait(
+            RecordPrompt(self.scene, default, self._last_recording,
+                         read=self.config.path, replace=self._confirm_replace))
+        if answer is None:
+            return
+        recording = self._last_recording = as_recording(*answer)  # if asked again
+        recorder.record(self.scene.unmarked(), recording)
 
     def action_quit(self) -> None:
         self._quit()
@@ -699,36 +723,41 @@ def _bundled(path: Path) -> bool:
 def run_app(config: Config, colors: str = "auto", fps: float | None = None,
             compile_aside: bool = False, graphics: str | None = None,
             pixel_scale: float = 1.0) -> int:
-    """Run the app on ``config``; ``colors`` is ``auto``, ``truecolor`` or ``256``; ``fps``
-    caps the frame rate. ``compile_aside``: compile a frame's kernels in forked children
-    while Textual starts (see tui/ahead.py), for a process of its own.
-    ``graphics``: the command line's choice of how the picture reaches the terminal
-    (default: the config's), real pixels ``pixel_scale`` of the terminal's each way.
+    """Run the app on ``config``; ``colors`` is ``auto`` (the config's, or what the terminal
+    answers), ``truecolor`` or ``256``; ``fps`` caps the frame rate. ``compile_aside``:
+    compile a frame's kernels in forked children while Textual starts (see tui/ahead.py),
+    for a process of its own. ``graphics``: the command line's choice of how the picture
+    reaches the terminal (default: the config's), real pixels ``pixel_scale`` of the
+    terminal's each way.
 
     Returns the exit status: 0, or 1 if the app ended on an error, after offering to save
     the model it had (:func:`rescued`)."""
     previous = textual.constants.COLOR_SYSTEM
-    # Textual's apps take their colours from this constant as they are made (it read
-    # TEXTUAL_COLOR_SYSTEM once, on import). Put back after, for a caller that goes on
-    # (a test process) and should keep its own.
-    textual.constants.COLOR_SYSTEM = detect.colour_system(colors)
     try:
-        return _run(config, fps, compile_aside, graphics, pixel_scale)
+        return _run(config, colors, fps, compile_aside, graphics, pixel_scale)
     finally:
         textual.constants.COLOR_SYSTEM = previous
 
 
-def _run(config: Config, fps: float | None, compile_aside: bool, graphics: str | None,
-         pixel_scale: float) -> int:
+def _run(config: Config, colors: str, fps: float | None, compile_aside: bool,
+         graphics: str | None, pixel_scale: float) -> int:
     # Asked before Textual takes the terminal (its input thread would take the answers); not
-    # at all when the command line says half-blocks, so nothing is written but the app.
+    # at all when the command line says half-blocks and the colours, so nothing is written
+    # but the app.
     asked = graphics or config.render.graphics
-    answers = None if graphics == "halfblocks" else detect.ask()
-    choice = detect.choose(asked, answers, detect.Place.here())
+    colours_asked = config.render.colors if colors == "auto" else colors
+    answers = None if graphics == "halfblocks" and colors != "auto" else detect.ask()
+    place = detect.Place.here()
+    choice = choose(asked, answers, place)
+    # Textual's apps take their colours from this constant as they are made (it read
+    # TEXTUAL_COLOR_SYSTEM once, on import); run_app puts it back after, for a caller that
+    # goes on (a test process) and should keep its own.
+    system = colours(colours_asked, answers, place).system
+    textual.constants.COLOR_SYSTEM = system
     encoder = encoder_for(choice, pixel_scale)
     if compile_aside:
-        compile_ahead(config, encoder)
-    app = BicepsApp(config, fps=fps, encoder=encoder, notice=detect.notice(asked, choice))
+        compile_ahead(config, encoder, palette=system == "256" and choice.graphics in TEXT)
+    app = BicepsApp(config, fps=fps, encoder=encoder, notice=notice(asked, choice))
     app.run()
     if app.failure is None:
         return 0

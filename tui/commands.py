@@ -28,7 +28,8 @@ class KeyCommands(Provider):
                 # (a priority binding of the app's repeats one of its others: the arrows')
                 if binding.description and not binding.priority:
                     keys.setdefault(binding.action, []).append(app.get_key_display(binding))
-                    descriptions[binding.action] = binding.description
+                    # The footer's word, or the whole sentence where it has one.
+                    descriptions[binding.action] = binding.tooltip or binding.description
             for action, shown in keys.items():
                 run = partial(app.run_action, action, owner)
                 yield descriptions[action], ", ".join(shown), run

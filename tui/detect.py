@@ -1,32 +1,31 @@
-"""What the terminal can show, asked before the app takes the screen, and what the app makes
-of the answers.
+"""What the terminal can show, asked before the app takes the screen (``tui/choose.py`` makes
+the choices from the answers).
 
-:func:`ask` writes a few questions to the terminal at once and reads the answers:
+:func:`ask` writes questions to the terminal and reads the answers, in two rounds:
 
-- kitty's graphics query (an image of one pixel that is checked, not stored:
-  ``a=q``): kitty, WezTerm, Ghostty and Konsole answer ``OK``;
-- XTVERSION (``CSI > 0 q``): the terminal's name and version;
-- XTSMGRAPHICS (``CSI ? 1 ; 1 ; 0 S``): how many colour registers sixel images have;
-- ``CSI 16 t`` and ``CSI 14 t``: the size of a cell, and of the window, in pixels;
-- the primary device attributes (DA1, ``CSI c``), asked last: every terminal answers
-  them, 4 among them meaning sixel, and answers in order, so once they are in, every
-  answer that is coming has come.
+1. questions every terminal and multiplexer takes in its stride: XTVERSION (``CSI > 0 q``,
+   the terminal's name and version: ``XTerm(379)``, ``kitty(0.26.5)``, ``tmux 3.3a``), the
+   secondary device attributes (``CSI > c``: 65 is VTE, 83 GNU screen, 84 tmux),
+   XTSMGRAPHICS (``CSI ? 1 ; 1 ; 0 S`` and ``CSI ? 2 ; 4 ; 0 S``: sixel's colour registers
+   and the largest sixel image, which xterm keeps to 1000x1000 pixels unless told more),
+   ``CSI 16 t`` and ``CSI 14 t`` (the size of a cell, and of the window, in pixels);
+2. unless a multiplexer answered (or the environment says one is there): kitty's graphics
+   query (an image of one pixel that is checked, not stored: ``a=q``), which tmux would
+   take for a window title and GNU screen for its status line; a 24-bit colour set and read
+   back (DECRQSS ``m``: a terminal that keeps it answers with ``38:2``, one that maps it
+   onto its palette with ``38;5``), which screen would hand on to the terminal behind it;
+   and terminfo's ``Tc`` and ``RGB`` (XTGETTCAP).
 
-A terminal answers in one round trip, however many questions there are; the time limit
-(:data:`ANSWER_TIME`) is for one that does not answer at all (no terminal descended from
-the VT100 is one), and is long enough for a slow SSH link: two seconds is longer than any
-round trip people type over. Answers that came later still would reach the app as keys.
+Each round ends with the primary device attributes (DA1, ``CSI c``): every terminal
+answers them (4 among them meaning sixel), and answers in order, so once they are in, every
+answer that is coming has come. A terminal answers a round in one round trip; the time
+limit (:data:`ANSWER_TIME`) is for one that does not answer at all (no terminal descended
+from the VT100 is one), long enough for a slow SSH link. Answers that came later still
+would reach the app as keys.
 
-Inside tmux or GNU screen the multiplexer answers, not the terminal. tmux says sixel only
-when it draws sixel itself (tmux 3.4 built with sixel), and that is used. Otherwise, in a
-kitty (as tmux names the outer terminal) and with tmux's ``allow-passthrough`` on, kitty's
-images go through the passthrough, placed by Unicode placeholders (kitty 0.28 or later),
-which tmux draws, moves and hides as text. Images placed at the cursor (sixel and iTerm2
-through the passthrough, kitty's without placeholders) would be drawn where the outer
-cursor happens to be and stay when tmux shows another window: half-blocks, and why.
-
-:func:`choose` turns the answers and the asked ``--graphics`` into a :class:`Choice`;
-``biceps doctor`` prints both.
+Inside tmux the app talks to tmux, which answers for itself; the ``tmux`` command (when the
+app runs where tmux does, not over SSH from inside it) says which terminal tmux is in, that
+terminal's own XTVERSION answer, and whether tmux sends it 24-bit colour.
 """
 
 from __future__ import annotations
@@ -41,29 +40,38 @@ import subprocess
 import termios
 import time
 import tty
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Mapping
 
-from rich.console import Console
-
 ANSWER_TIME = 2.0  # seconds to wait for a terminal that does not answer at all
-DEFAULT_CELL = (10, 20)  # pixels, when the terminal does not say
-QUESTIONS = (
-    "\x1b_Gi=31,s=1,v=1,a=q,t=d,f=24;AAAA\x1b\\"  # kitty graphics
+ANY_TERMINAL = (
     "\x1b[>0q"  # XTVERSION
+    "\x1b[>c"  # DA2
     "\x1b[?1;1;0S"  # XTSMGRAPHICS: sixel colour registers
+    "\x1b[?2;4;0S"  # XTSMGRAPHICS: the largest sixel image
     "\x1b[16t"  # cell size in pixels
     "\x1b[14t"  # text area in pixels
     "\x1b[c"  # DA1, answered last
 )
+NO_MULTIPLEXER = (
+    "\x1b_Gi=31,s=1,v=1,a=q,t=d,f=24;AAAA\x1b\\"  # kitty graphics
+    "\x1b[38;2;1;2;3m\x1bP$qm\x1b\\\x1b[0m"  # a 24-bit colour, read back (DECRQSS)
+    "\x1bP+q5463;524742\x1b\\"  # XTGETTCAP Tc, RGB
+    "\x1b[c"  # DA1, answered last
+)
 DEVICE_ATTRIBUTES = re.compile(rb"\x1b\[\?([\d;]*)c")
+SECONDARY_ATTRIBUTES = re.compile(rb"\x1b\[>([\d;]*)c")
 KITTY = re.compile(rb"\x1b_Gi=31;([^\x1b]*)\x1b\\")
 VERSION = re.compile(rb"\x1bP>\|([^\x1b]*)\x1b\\")
 REGISTERS = re.compile(rb"\x1b\[\?1;0;(\d+)S")
+GEOMETRY = re.compile(rb"\x1b\[\?2;0;(\d+);(\d+)S")
 CELL = re.compile(rb"\x1b\[6;(\d+);(\d+)t")
 WINDOW = re.compile(rb"\x1b\[4;(\d+);(\d+)t")
+SGR = re.compile(rb"\x1bP([01])\$r([^\x1b]*)\x1b\\")
+CAPABILITY = re.compile(rb"\x1bP1\+r([0-9A-Fa-f]+)")
 SIXEL_ATTRIBUTE = "4"
-PLACEHOLDER_TERMINALS = ("kitty", "ghostty")  # as tmux names them: Unicode placeholders
+TMUX, SCREEN, VTE = "84", "83", "65"  # secondary device attributes' first parameter
+TRUE_COLOUR_CAPABILITIES = {"Tc", "RGB"}
 
 
 @dataclass(frozen=True)
@@ -71,7 +79,7 @@ class Answers:
     """What the terminal (or the multiplexer in front of it) said, and how fast."""
 
     answered: bool = False  # the device attributes came back in time
-    round_trip: float | None = None  # seconds from the questions to the device attributes
+    round_trip: float | None = None  # seconds from the first questions to their answers
     device_attributes: tuple[str, ...] = ()
     kitty: str | None = None  # the graphics query's answer: "OK" or an error
     name: str | None = None  # XTVERSION's
@@ -81,19 +89,50 @@ class Answers:
     # The kernel's idea of the same (TIOCGWINSZ), which xterm keeps though it refuses to
     # answer CSI 14 t and 16 t by default; (columns, rows, width, height).
     size: tuple[int, int, int, int] | None = None
+    secondary: tuple[str, ...] = ()  # DA2
+    sixel_limit: tuple[int, int] | None = None  # the largest sixel image, in pixels
+    asked_all: bool = False  # the second round was asked (no multiplexer in front)
+    sgr: str | None = None  # DECRQSS's answer to the 24-bit colour: the SGR it holds
+    capabilities: frozenset[str] = frozenset()  # of Tc and RGB, those XTGETTCAP confirmed
 
     @property
     def sixel(self) -> bool:
         return SIXEL_ATTRIBUTE in self.device_attributes
 
+    @property
+    def multiplexer(self) -> str | None:
+        """The multiplexer that answered for the terminal, if one did: "tmux" or "screen"."""
+        if (self.name or "").startswith("tmux ") or self.secondary[:1] == (TMUX,):
+            return "tmux"
+        return "screen" if self.secondary[:1] == (SCREEN,) else None
+
+    @property
+    def reads_back_24_bit(self) -> bool:
+        """Whether DECRQSS read the 24-bit colour back as it was set."""
+        return self.sgr is not None and re.search(r"38[:;]2[:;]", self.sgr) is not None
+
+    @property
+    def true_colour(self) -> bool | None:
+        """Whether the terminal keeps a 24-bit colour as it is (DECRQSS read it back, or
+        terminfo's Tc or RGB); False if it read back a palette's; None if nothing said."""
+        if self.reads_back_24_bit or self.capabilities & TRUE_COLOUR_CAPABILITIES:
+            return True
+        if self.sgr is not None and re.search(r"38[:;]5[:;]", self.sgr):
+            return False
+        return None
+
 
 def parse(data: bytes, round_trip: float | None = None,
-          size: tuple[int, int, int, int] | None = None) -> Answers:
+          size: tuple[int, int, int, int] | None = None, asked_all: bool = False) -> Answers:
     """The answers in ``data``, what the terminal wrote back; ``size``: the terminal's size
-    as the kernel has it, in cells and pixels."""
+    as the kernel has it, in cells and pixels; ``asked_all``: both rounds were asked."""
     attributes = DEVICE_ATTRIBUTES.search(data)
     kitty, version = KITTY.search(data), VERSION.search(data)
     registers, cell, window = REGISTERS.search(data), CELL.search(data), WINDOW.search(data)
+    secondary, geometry, sgr = (SECONDARY_ATTRIBUTES.search(data), GEOMETRY.search(data),
+                                SGR.search(data))
+    confirmed = {bytes.fromhex(name.decode()).decode(errors="replace")
+                 for name in CAPABILITY.findall(data) if len(name) % 2 == 0}
     return Answers(
         answered=attributes is not None,
         round_trip=round_trip if attributes is not None else None,
@@ -104,11 +143,18 @@ def parse(data: bytes, round_trip: float | None = None,
         cell=(int(cell[2]), int(cell[1])) if cell and int(cell[1]) and int(cell[2]) else None,
         window=(int(window[2]), int(window[1])) if window else None,
         size=size,
+        secondary=tuple(secondary[1].decode().split(";")) if secondary else (),
+        sixel_limit=(int(geometry[1]), int(geometry[2])) if geometry else None,
+        asked_all=asked_all,
+        sgr=sgr[2].decode(errors="replace") if sgr and sgr[1] == b"1" else None,
+        capabilities=frozenset(confirmed & TRUE_COLOUR_CAPABILITIES),
     )
 
 
-def ask(timeout: float = ANSWER_TIME) -> Answers | None:
-    """Ask the controlling terminal; None when there is none (output to a pipe, say)."""
+def ask(environ: Mapping[str, str] = os.environ, timeout: float = ANSWER_TIME
+        ) -> Answers | None:
+    """Ask the controlling terminal; None when there is none (output to a pipe, say). The
+    second round is left out where ``environ`` says a multiplexer is in front."""
     try:
         fd = os.open("/dev/tty", os.O_RDWR | os.O_NOCTTY)
     except OSError:
@@ -120,9 +166,17 @@ def ask(timeout: float = ANSWER_TIME) -> Answers | None:
         try:
             tty.setraw(fd, termios.TCSANOW)
             start = time.monotonic()
-            os.write(fd, QUESTIONS.encode())
+            os.write(fd, ANY_TERMINAL.encode())
             data, answered = _read_answers(fd, start + timeout)
-            return parse(data, time.monotonic() - start if answered else None, _size(fd))
+            round_trip = time.monotonic() - start if answered else None
+            first = parse(data)
+            asked_all = (answered and first.multiplexer is None
+                         and Place.here(environ).multiplexer is None)
+            if asked_all:
+                os.write(fd, NO_MULTIPLEXER.encode())
+                more, _ = _read_answers(fd, time.monotonic() + timeout)
+                data += more
+            return parse(data, round_trip, _size(fd), asked_all)
         finally:
             termios.tcsetattr(fd, termios.TCSAFLUSH, saved)
     finally:
@@ -151,24 +205,38 @@ def _read_answers(fd: int, deadline: float) -> tuple[bytes, bool]:
 
 @dataclass(frozen=True)
 class Place:
-    """Where the app runs: a multiplexer in front of the terminal, and the colours."""
+    """Where the app runs, as its environment says: a multiplexer in front of the terminal,
+    and what tmux says of the terminal behind it."""
 
     multiplexer: str | None = None  # "tmux" or "screen"
-    outer_terminal: str | None = None  # the terminal tmux runs in, as tmux names it
+    outer_terminal: str | None = None  # the terminal tmux runs in, as tmux names it (TERM)
+    outer_version: str | None = None  # its answer to XTVERSION, as tmux keeps it
+    outer_features: frozenset[str] | None = None  # tmux's features of it (RGB: 24-bit)
     term: str = ""
     colorterm: str = ""
     terminal_program: str = ""  # TERM_PROGRAM or LC_TERMINAL
     passthrough: bool = False  # tmux's allow-passthrough is on
+    vte: bool = False  # VTE_VERSION is set: a VTE terminal (GNOME Terminal, xfce4-terminal)
+    windows_terminal: bool = False  # WT_SESSION is set
 
     @classmethod
     def here(cls, environ: Mapping[str, str] = os.environ) -> Place:
-        multiplexer = "tmux" if environ.get("TMUX") else "screen" if environ.get("STY") else None
-        inside_tmux = multiplexer == "tmux"
-        outer = _tmux("display-message", "-p", "#{client_termname}") if inside_tmux else None
-        passthrough = inside_tmux and _tmux("show-options", "-gv", "allow-passthrough") in (
-            "on", "all")
-        return cls(multiplexer, outer, environ.get("TERM", ""), environ.get("COLORTERM", ""),
-                   environ.get("LC_TERMINAL") or environ.get("TERM_PROGRAM", ""), passthrough)
+        term = environ.get("TERM", "")
+        multiplexer = ("tmux" if environ.get("TMUX") else
+                       "screen" if environ.get("STY") or term.startswith("screen") else None)
+        outer = version = features = None
+        passthrough = False
+        if multiplexer == "tmux":
+            described = _tmux("display-message", "-p",
+                              "#{client_termname}|#{client_termtype}|#{client_termfeatures}")
+            if described is not None:
+                outer, version, listed = (described.split("|") + ["", ""])[:3]
+                outer, version = outer or None, version or None
+                features = frozenset(filter(None, listed.split(","))) if listed else None
+            passthrough = _tmux("show-options", "-gv", "allow-passthrough") in ("on", "all")
+        return cls(multiplexer, outer, version, features, term, environ.get("COLORTERM", ""),
+                   environ.get("LC_TERMINAL") or environ.get("TERM_PROGRAM", ""), passthrough,
+                   bool(environ.get("VTE_VERSION")), bool(environ.get("WT_SESSION")))
 
 
 def _tmux(*arguments: str) -> str | None:
@@ -180,154 +248,3 @@ def _tmux(*arguments: str) -> str | None:
     except (OSError, subprocess.SubprocessError):
         return None
     return result.stdout.strip() or None if result.returncode == 0 else None
-
-
-@dataclass(frozen=True)
-class Choice:
-    """How the picture is sent, why, and what else the terminal could have shown."""
-
-    graphics: str  # "kitty", "sixel", "iterm" or "halfblocks"
-    reason: str
-    cell: tuple[int, int] = DEFAULT_CELL  # the terminal's pixels per cell
-    colours: int = 256  # sixel colour registers
-    could: str | None = None  # the real pixels the terminal has, when not used
-    notes: tuple[str, ...] = field(default_factory=tuple)
-    multiplexer: str | None = None  # what the images go through: "tmux" or None
-
-
-def best(answers: Answers, place: Place) -> tuple[str | None, str]:
-    """The best protocol for real pixels that ``answers`` show, and why; None if none."""
-    name = (answers.name or place.terminal_program or "").lower()
-    if place.multiplexer == "screen":
-        return None, "inside GNU screen, whose passthrough cannot place images: half-blocks"
-    if place.multiplexer == "tmux":
-        if answers.sixel:
-            return "sixel", "tmux draws sixel images itself (its device attributes say 4)"
-        outer = place.outer_terminal or ""
-        kitty = any(name in outer for name in PLACEHOLDER_TERMINALS)
-        if kitty and place.passthrough:
-            return "kitty", (f"inside tmux in {outer}, with allow-passthrough on: kitty images "
-                             "through it, placed by Unicode placeholders (kitty 0.28 or later)")
-        if kitty:
-            return None, (f"inside tmux in {outer}, with allow-passthrough off: half-blocks "
-                          "(tmux set -g allow-passthrough on lets kitty's images through)")
-        within = f" (in {outer})" if outer else ""
-        return None, (f"inside tmux{within}, which does not draw sixel itself, and images "
-                      "other than kitty's placeholders would land where the outer cursor is, "
-                      "and stay when tmux shows another window: half-blocks")
-    if answers.kitty == "OK":
-        return "kitty", "the terminal answered kitty's graphics query with OK"
-    if "iterm" in name:
-        return "iterm", f"the terminal is iTerm2 ({answers.name or place.terminal_program})"
-    if answers.sixel:
-        return "sixel", "the terminal's device attributes include 4, sixel graphics"
-    if not answers.answered:
-        return None, f"the terminal did not answer within {ANSWER_TIME:g} s: half-blocks"
-    return None, "the terminal answered, but with no protocol for real pixels: half-blocks"
-
-
-def choose(asked: str, answers: Answers | None, place: Place) -> Choice:
-    """What the app uses when ``--graphics`` (or the config) says ``asked``."""
-    found, why = best(answers or Answers(), place)
-    if answers is None:
-        why = "there is no terminal to ask (not a terminal): half-blocks"
-    answers = answers or Answers()
-    cell, cell_note = _cell(answers)
-    colours = min(answers.colour_registers or 256, 256)
-    notes = (cell_note,)
-    if answers.sixel and answers.colour_registers is not None and answers.colour_registers < 64:
-        notes += (f"sixel has only {answers.colour_registers} colours here; xterm takes more "
-                  "with -xrm 'XTerm*numColorRegisters: 256'",)
-    through = place.multiplexer if place.multiplexer == "tmux" else None
-    if asked == "auto":
-        graphics = found or "halfblocks"
-        return Choice(graphics, f"auto: {why}", cell, colours, None, notes, through)
-    if asked == "halfblocks":
-        reason = "halfblocks, as asked (the default)"
-        return Choice("halfblocks", reason, cell, colours, found, notes)
-    if place.multiplexer is not None and found != asked:
-        return Choice("halfblocks", f"{asked} was asked, but {why}", cell, colours, found, notes)
-    return Choice(asked, f"{asked}, as asked", cell, colours, None, notes, through)
-
-
-def _cell(answers: Answers) -> tuple[tuple[int, int], str]:
-    if answers.cell:
-        return answers.cell, "cell size from the terminal (CSI 16 t)"
-    columns, rows, width, height = answers.size or (*shutil.get_terminal_size(), 0, 0)
-    if answers.window and (cell := _per_cell(answers.window, columns, rows)):
-        return cell, "cell size from the window's (CSI 14 t)"
-    if cell := _per_cell((width, height), columns, rows):
-        return cell, "cell size from the kernel's (TIOCGWINSZ)"
-    width, height = DEFAULT_CELL
-    return DEFAULT_CELL, f"the terminal did not say its cell size: {width}x{height} assumed"
-
-
-def colour_system(asked: str = "auto", environ: Mapping[str, str] = os.environ) -> str:
-    """The colours the picture goes out in, ``truecolor`` or ``256``, for ``asked`` (the
-    command line's ``--colors``). ``auto`` takes TEXTUAL_COLOR_SYSTEM if it is set, else what
-    Rich reads from COLORTERM and TERM, but never fewer than 256 colours: Rich reads
-    TERM=xterm, Debian's xterm's own and a common one over SSH, as 16, in which the shaded
-    muscle is a flat yellow stick, while xterm has had 256 since 1999 (patch 111) and every
-    terminal in use has them."""
-    if asked != "auto":
-        return asked
-    chosen = environ.get("TEXTUAL_COLOR_SYSTEM", "auto")
-    if chosen in ("truecolor", "256"):
-        return chosen
-    found = Console(force_terminal=True, color_system="auto", _environ=dict(environ))
-    return "truecolor" if found.color_system == "truecolor" else "256"
-
-
-def _per_cell(pixels: tuple[int, int], columns: int, rows: int) -> tuple[int, int] | None:
-    """Pixels per cell, or None if they round to nothing or the size in cells is unknown:
-    a pseudo-terminal nobody gave a size (``script`` into a pipe, some editors' shells)
-    says 0 columns and 0 rows."""
-    if columns <= 0 or rows <= 0:
-        return None
-    cell = pixels[0] // columns, pixels[1] // rows
-    return cell if all(cell) else None
-
-
-def hint(choice: Choice) -> str | None:
-    """What to tell a person whose terminal could show real pixels, once."""
-    if choice.could is None:
-        return None
-    return (f"This terminal can show real pixels ({choice.could}): start biceps with "
-            f"--graphics {choice.could}, or set graphics = \"{choice.could}\" under [render] "
-            "in the config.")
-
-
-def notice(asked: str, choice: Choice) -> str | None:
-    """What the app says once it is up: that real pixels could be had, or why the real
-    pixels asked for are half-blocks."""
-    if asked != "halfblocks" and choice.graphics == "halfblocks":
-        return f"Half-blocks: {choice.reason}"
-    return hint(choice)
-
-
-def report(asked: str, answers: Answers | None, place: Place, choice: Choice) -> str:
-    """What ``biceps doctor`` prints: what was asked, what came back, what follows."""
-    a = answers or Answers()
-    lines = [
-        ("terminal", f"{a.name or 'did not say its name'} (TERM={place.term or 'unset'}"
-                     f"{', ' + place.terminal_program if place.terminal_program else ''})"),
-        ("multiplexer", place.multiplexer + (f" in {place.outer_terminal}"
-                                             if place.outer_terminal else "")
-         + (", allow-passthrough on" if place.passthrough else "")
-         if place.multiplexer else "none"),
-        ("round trip", "no terminal to ask (not a terminal)" if answers is None else
-         f"{1000 * a.round_trip:.1f} ms" if a.round_trip is not None else
-         f"no answer within {ANSWER_TIME:g} s"),
-        ("kitty graphics", a.kitty or "no answer"),
-        ("sixel", ("yes" if a.sixel else "no") + f" (device attributes "
-                  f"{';'.join(a.device_attributes) or 'none'})"
-                  + (f", {a.colour_registers} colour registers" if a.colour_registers else "")),
-        ("cell size", f"{choice.cell[0]}x{choice.cell[1]} pixels"),
-        ("colours", f"COLORTERM={place.colorterm or 'unset'}: "
-                    + ("24-bit" if colour_system() == "truecolor" else
-                       "256 (start with --colors truecolor if the terminal has 24-bit)")),
-        ("graphics", f"{choice.graphics}: {choice.reason}"),
-    ]
-    text = "\n".join(f"  {label:<15} {value}" for label, value in lines)
-    notes = [*choice.notes] + ([hint(choice)] if hint(choice) else [])
-    return text + "".join(f"\n  - {note}" for note in notes)

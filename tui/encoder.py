@@ -46,6 +46,11 @@ class PictureEncoder(Protocol):
         ``w * cell.width`` by ``h * cell.height`` pixels."""
         ...
 
+    @property
+    def aspect(self) -> float:
+        """A pixel's width over its height on the screen, which the frame is drawn for."""
+        ...
+
     def encode(self, frame: np.ndarray) -> Picture:
         """The picture of ``frame`` ((h, w, 3) uint8, a whole number of cells), and what
         changed since the last one."""

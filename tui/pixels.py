@@ -12,7 +12,9 @@ elsewhere, as the kitty in Debian 12 (0.26) predates placeholders.
 
 A frame may be smaller than the cells it fills (a fraction of the terminal's pixels, for a
 slow link): kitty and iTerm2 scale it up to the cells; sixel, which cannot, is always sent
-at the terminal's own pixel size.
+at the terminal's own pixel size, and where that is larger than the terminal takes a sixel
+image (xterm's 1000x1000 pixels unless told more, which it answers XTSMGRAPHICS with), the
+frame is scaled down to fit and drawn in the middle of its cells.
 """
 
 from __future__ import annotations
@@ -27,9 +29,10 @@ from textual.geometry import Size
 from textual.strip import Strip
 
 from biceps.tui import iterm, kitty, sixel
-from biceps.tui.detect import Choice
+from biceps.tui.cells import SHAPES
+from biceps.tui.choose import Choice
 from biceps.tui.encoder import Picture, PictureEncoder
-from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.halfblocks import HalfBlocks, TextCells
 
 
 class ImageEncoder:
@@ -38,19 +41,27 @@ class ImageEncoder:
     ``cell``: the frame's pixels per cell (the terminal's cell size, or a fraction of it).
     """
 
+    aspect = 1.0  # the terminal's pixels are square
+
     def __init__(self, cell: Size) -> None:
         if cell.width < 1 or cell.height < 1:
             raise ValueError(f"a cell must be at least one pixel each way, not {cell}")
         self.cell = cell
-        self._shape: tuple[int, int] | None = None  # the picture in cells: (rows, columns)
+        # The style of the lines under the image, the picture's background: where an image
+        # is smaller than its cells (sixel), the terminal's own (xterm's white) would show.
+        # Set by the viewport; read as the lines are made.
+        self.background = Style()
+        # The picture in cells, (rows, columns), and the background its lines were made in.
+        self._shape: tuple[tuple[int, int], Style] | None = None
         self._strips: list[Strip] = []
 
     def encode(self, frame: np.ndarray) -> Picture:
         """The picture of ``frame`` ((h, w, 3) uint8, a whole number of cells)."""
         rows, columns = frame.shape[0] // self.cell.height, frame.shape[1] // self.cell.width
         changed = []
-        if self._shape != (rows, columns):
-            self._shape = rows, columns
+        background = self.background
+        if self._shape != ((rows, columns), background):
+            self._shape = (rows, columns), background
             self._strips = self.lines(columns, rows)
             changed = [(0, rows)]
         return Picture(self._strips, changed, self.image(frame, columns, rows))
@@ -59,8 +70,8 @@ class ImageEncoder:
         self._shape = None
 
     def lines(self, columns: int, rows: int) -> list[Strip]:
-        """The lines under the image: blank."""
-        return [Strip.blank(columns)] * rows
+        """The lines under the image: blank, on the background."""
+        return [Strip.blank(columns, self.background)] * rows
 
     def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
         """Escape sequences drawing ``frame`` from the cursor over ``columns x rows`` cells
@@ -116,14 +127,18 @@ class KittyPlaceholders(ImageEncoder):
 
 
 class Sixel(ImageEncoder):
-    """Frames as sixel images of at most ``colours`` colours, at the terminal's pixels."""
+    """Frames as sixel images of at most ``colours`` colours, at the terminal's pixels, and
+    at most ``limit`` (width, height) pixels."""
 
-    def __init__(self, cell: Size, colours: int = sixel.MAX_COLOURS) -> None:
+    def __init__(self, cell: Size, colours: int = sixel.MAX_COLOURS,
+                 limit: tuple[int, int] | None = None) -> None:
         super().__init__(cell)
         self.colours = max(2, min(colours, sixel.MAX_COLOURS))
+        self.limit = limit
 
     def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
-        return sixel.sixel_image(*sixel.quantised(frame, self.colours))
+        frame, moved = sixel.fitted(frame, self.limit, columns, rows, self.cell)
+        return moved + sixel.sixel_image(*sixel.quantised(frame, self.colours))
 
 
 class ItermImages(ImageEncoder):
@@ -145,5 +160,7 @@ def encoder_for(choice: Choice, fraction: float = 1.0) -> PictureEncoder:
     if choice.graphics == "iterm":
         return ItermImages(scaled)
     if choice.graphics == "sixel":
-        return Sixel(Size(width, height), choice.colours)
+        return Sixel(Size(width, height), choice.colours, choice.sixel_limit)
+    if choice.graphics in ("quadrants", "sextants"):
+        return TextCells(SHAPES[choice.graphics], terminal_cell=choice.cell)
     return HalfBlocks()

@@ -8,7 +8,10 @@ one character shortened to ``!count``. A sixel image has a palette, at most as m
 as the terminal has registers (256 at most here; xterm's vt340 has 16 unless told more).
 
 Pillow quantises the frame to that palette (its fast octree: about 6 ms for 1200x800, and
-no dithering, whose noise would cost bytes in every band); a numba kernel writes the bands.
+no dithering, whose noise would cost bytes in every band, where 64 registers or more leave
+no bands to see; with fewer, as xterm's vt340 has unless told more, the frame is dithered
+onto the octree's colours, choosing them as the eye sees them, ``tui/palette.py``); a numba
+kernel writes the bands.
 textual-image's pure-Python encoder took about 50 ms for the same frame (measured with
 version 0.12: too slow for 30 frames a second with the frame still to be drawn). (The
 encoder is in ``tui/pixels.py``.)
@@ -20,9 +23,11 @@ import numpy as np
 from PIL import Image
 
 from biceps.engine.jit import helper, ngjit
-from biceps.tui.sgr import put_number  # decimal digits into a byte buffer, as SGR has them
+from biceps.tui.palette import Ditherer
+from biceps.tui.writing import put_number
 
 MAX_COLOURS = 256
+FEW_COLOURS = 64  # registers below which a picture is dithered onto them
 SIXEL = 63  # "?", the character of a column with no pixel set; "?" + bits for the others
 REPEAT, NEXT_COLOUR, NEXT_BAND, SELECT = 33, 36, 45, 35  # "!", "$", "-", "#"
 
@@ -93,12 +98,34 @@ def encode_bands(indices, colours, out, length, lows, highs, bits):
 
 def quantised(frame: np.ndarray, colours: int) -> tuple[np.ndarray, np.ndarray]:
     """``frame`` ((h, w, 3) uint8) as palette indices ((h, w) uint8) and the palette
-    ((n, 3) uint8, n <= ``colours``)."""
+    ((n, 3) uint8, n <= ``colours``). With fewer than :data:`FEW_COLOURS` the frame is
+    dithered onto the palette as a 256-colour terminal's picture is (``tui/palette.py``),
+    where the octree's nearest colours alone would band the shading."""
     image = Image.fromarray(np.ascontiguousarray(frame), "RGB").quantize(
         colours, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
     indices = np.asarray(image)
     palette = np.asarray(image.getpalette()[: 3 * colours], np.uint8).reshape(-1, 3)
-    return indices, palette[: int(indices.max()) + 1]
+    palette = palette[: int(indices.max()) + 1]
+    if colours < FEW_COLOURS:
+        indices = Ditherer(palette).indices(frame)
+    return indices, palette
+
+
+def fitted(frame: np.ndarray, limit: tuple[int, int] | None, columns: int, rows: int,
+           cell: tuple[int, int]) -> tuple[np.ndarray, str]:
+    """``frame`` ((h, w, 3) uint8, filling ``columns x rows`` cells of ``cell`` (width,
+    height) pixels) scaled down, if it must be, to at most ``limit`` (width, height) pixels,
+    and the cursor moves that put it in the middle of its cells ("" if it fills them)."""
+    height, width = frame.shape[:2]
+    if limit is None or (width <= limit[0] and height <= limit[1]):
+        return frame, ""
+    scale = min(limit[0] / width, limit[1] / height)
+    size = max(1, int(width * scale)), max(1, int(height * scale))
+    frame = np.asarray(Image.fromarray(np.ascontiguousarray(frame), "RGB").resize(
+        size, Image.Resampling.BOX))
+    right = (columns - -(-size[0] // cell[0])) // 2
+    down = (rows - -(-size[1] // cell[1])) // 2
+    return frame, (f"\x1b[{down}B" if down else "") + (f"\x1b[{right}C" if right else "")
 
 
 def sixel_image(indices: np.ndarray, palette: np.ndarray) -> str:

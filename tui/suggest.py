@@ -1,10 +1,13 @@
-"""Completing file names in dialogs, as a shell's tab does (accept with → or end)."""
+"""Completing file names, and the bundled models' names, in dialogs, as a shell's tab does
+(accept with → or end)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 from textual.suggester import Suggester
+
+from biceps.configs import bundled_names
 
 
 class PathSuggester(Suggester):
@@ -36,3 +39,23 @@ class PathSuggester(Suggester):
             if not self._suffixes or entry.suffix.lower() in self._suffixes:
                 return f"{head}{name}"
         return None
+
+
+class ModelSuggester(PathSuggester):
+    """Suggests a configuration file, as :class:`PathSuggester` does, or where no file's name
+    starts so, a bundled model's name (``el`` -> ``elbow``), as the open dialog reads them
+    (``configs/`` before it too)."""
+
+    def __init__(self) -> None:
+        super().__init__((".toml",))
+
+    async def get_suggestion(self, value: str) -> str | None:
+        found = await super().get_suggestion(value)
+        if found is not None:
+            return found
+        head = "configs/" if value.startswith("configs/") else ""
+        start = value[len(head):]
+        if not start or "/" in start:
+            return None
+        return next((f"{head}{name}" for name in bundled_names() if name.startswith(start)),
+                    None)

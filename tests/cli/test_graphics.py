@@ -16,8 +16,9 @@ from PIL import Image
 from biceps.cli import main
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui import detect
-from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui import detect, printed
+from biceps.tui.cells import SEXTANTS
+from biceps.tui.halfblocks import HalfBlocks, TextCells
 from biceps.tui.pixels import KittyGraphics, Sixel
 
 XTERM = detect.parse(b"\x1bP>|XTerm(379)\x1b\\\x1b[?1;0;256S\x1b[?63;4c", 0.002,
@@ -100,10 +101,13 @@ def test_half_blocks_by_default_with_a_word_about_real_pixels(started):
     assert "can show real pixels (sixel): start biceps with --graphics sixel" in started["notice"]
 
 
-def test_half_blocks_asked_on_the_command_line_ask_the_terminal_nothing(started):
-    assert run("app", DEFAULT_CONFIG, "--graphics", "halfblocks").exit_code == 0
+def test_half_blocks_and_colours_asked_on_the_command_line_ask_the_terminal_nothing(started):
+    assert run("app", DEFAULT_CONFIG, "--graphics", "halfblocks", "--colors", "256").exit_code == 0
     assert isinstance(started["encoder"], HalfBlocks) and started["asked"] == 0
     assert started["notice"] is None
+    # The colours left to the terminal, it is asked about them.
+    assert run("app", DEFAULT_CONFIG, "--graphics", "halfblocks").exit_code == 0
+    assert started["asked"] == 1
 
 
 def test_the_config_may_choose_real_pixels(started, tmp_path):
@@ -127,15 +131,51 @@ def test_a_protocol_the_place_cannot_take_falls_back_and_says_why(started, monke
     assert "Half-blocks: kitty was asked, but inside GNU screen" in started["notice"]
 
 
-def test_auto_says_why_it_came_to_half_blocks(started, monkeypatch):
+def test_auto_says_why_it_came_to_text(started, monkeypatch):
     monkeypatch.setattr(detect, "ask", lambda: detect.parse(b"\x1b[?1;2c", 0.01))  # tmux's
     monkeypatch.setattr(detect.Place, "here", classmethod(
         lambda cls: detect.Place(multiplexer="tmux", outer_terminal="xterm-kitty")))
     assert run("app", DEFAULT_CONFIG, "--graphics", "auto").exit_code == 0
-    assert isinstance(started["encoder"], HalfBlocks)
+    # No images through tmux, but kitty draws sextants itself.
+    assert isinstance(started["encoder"], TextCells) and started["encoder"].shape == SEXTANTS
+    assert started["notice"].startswith("Sextants: auto: inside tmux in xterm-kitty")
     assert "tmux set -g allow-passthrough on" in started["notice"]
 
 
 def test_a_bad_pixel_scale_is_refused():
     result = run("app", DEFAULT_CONFIG, "--pixel-scale", "2")
     assert result.exit_code == 2 and "must be 0.1 to 1" in result.stderr
+
+
+def test_snapshot_kitty_fits_a_wide_window_by_its_rows(monkeypatch):
+    # 16:9 across 160 columns of 10x20 would be 45 rows: the window has 20, and the prompt
+    # takes one after the picture.
+    monkeypatch.setenv("COLUMNS", "160")
+    monkeypatch.setenv("LINES", "20")
+    result = run("snapshot", DEFAULT_CONFIG, "--kitty")
+    assert result.exit_code == 0, result.output
+    columns = round(19 * 20 * 16 / 9 / 10)
+    assert f"s={columns * 10},v={19 * 20}," in result.stdout
+    assert f",c={columns},r=19," in result.stdout
+
+
+def test_snapshot_sixel_where_the_terminal_has_none_says_so(monkeypatch):
+    monkeypatch.setattr(printed, "terminal_answers", lambda: detect.parse(
+        b"\x1bP>|XTerm(379)\x1b\\\x1b[?64;1;2;6;9;15;16;17;18;21;22;28c", 0.001))
+    result = run("snapshot", DEFAULT_CONFIG, "--sixel")
+    assert result.exit_code == 2 and result.stdout == ""
+    assert ("biceps: cannot print --sixel here: sixel was asked, but the terminal's device "
+            "attributes (64;1;2;6;9;15;16;17;18;21;22;28) do not include 4, sixel (xterm "
+            "draws sixel as a VT340: xterm -ti vt340); --ansi prints the picture in text, "
+            "which every terminal shows") in result.stderr
+
+
+def test_snapshot_sixel_within_the_terminals_largest_image(monkeypatch):
+    monkeypatch.setenv("COLUMNS", "100")
+    monkeypatch.setenv("LINES", "40")
+    monkeypatch.setattr(printed, "terminal_answers", lambda: detect.parse(
+        b"\x1b[?2;0;400;300S\x1b[6;20;10t\x1b[?63;1;4c", 0.001, (100, 40, 0, 0)))
+    sixel = run("snapshot", DEFAULT_CONFIG, "--sixel").stdout
+    # 100 columns of 10 at 16:9 would be 1000x560 pixels: scaled to 400x224, moved into
+    # the middle of its 28 rows of cells, 60 columns of 40 to the right.
+    assert re.search(r'\x1b7\x1b\[8B\x1b\[30C\x1bP0;1;0q"1;1;400;224#', sixel), sixel[:80]

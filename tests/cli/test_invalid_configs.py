@@ -23,7 +23,7 @@ INVALID_CASES = {
                             "more",
     "bad_colour.toml": ":6: render.muscle_colour: should be a colour written #rrggbb (found 'red')",
     "bad_graphics.toml": (":6: render.graphics: Input should be 'halfblocks', 'auto', 'kitty',"
-                          " 'sixel' or 'iterm' (found 'png')"),
+                          " 'sixel', 'iterm', 'sextants' or 'quadrants' (found 'png')"),
     "bad_shading.toml": ":6: render.shading: Input should be 'gouraud' or 'phong' (found 'flat')",
     "companion_bad_name.toml": ("muscles.long head: a muscle's name is 1 to 40 letters, digits, "
                                 "'_' or '-' (found 'long head')"),

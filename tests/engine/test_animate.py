@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from biceps.engine.animate import FlexCycle, check_cycle, render_cycle
-from biceps.engine.config import DEFAULT_CONFIG, load_config
+from biceps.engine.config import BUNDLED, DEFAULT_CONFIG, load_config, rgb
 from biceps.engine.errors import BicepsError
 from biceps.engine.scene import Scene, SceneRenderer
 
@@ -36,9 +36,9 @@ def test_each_pose_is_rendered_once_and_a_bounce_reuses_the_pictures(monkeypatch
     rendered = []
 
     class Counting(SceneRenderer):
-        def render(self, scene, width, height):
+        def render(self, scene, width, height, framed=None):
             rendered.append(scene.arm.flexion)
-            return super().render(scene, width, height)
+            return super().render(scene, width, height, framed)
 
     monkeypatch.setattr("biceps.engine.animate.SceneRenderer", Counting)
     steps = []
@@ -61,3 +61,19 @@ def test_a_cycle_past_the_joint_is_refused_before_anything_is_rendered(monkeypat
 def test_a_cycle_too_big_for_memory_is_refused():
     with pytest.raises(BicepsError, match="ask for fewer frames or a smaller size"):
         check_cycle(SCENE, FlexCycle(0.0, 90.0, 2000, bounce=False), 8192, 8192)
+
+
+@pytest.mark.parametrize("model", ["biceps", "elbow"])
+def test_the_whole_cycle_is_seen_from_one_camera_with_the_whole_arm_in_every_frame(model):
+    # Framed pose by pose, the shoulder drifted and the arm grew and shrank: the top 15 %
+    # of the straight and the bent arm's frames differed by 9.9 levels on average.
+    config = load_config(BUNDLED / f"{model}.toml")
+    frames = render_cycle(Scene.of(config), FlexCycle(0.0, 130.0, 60), 320, 180)
+    straight, bent = frames[0].astype(int), frames[30].astype(int)
+    top = round(0.15 * 180)
+    assert np.abs(straight[:top] - bent[:top]).mean() <= 2.0
+    background = np.array(rgb(config.render.background))
+    for frame in frames:
+        drawn = np.any(frame != background, axis=2)
+        assert drawn.any()
+        assert not (drawn[0].any() or drawn[-1].any() or drawn[:, 0].any() or drawn[:, -1].any())

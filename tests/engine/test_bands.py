@@ -30,7 +30,7 @@ pixels even drawn once a pixel, so that the picture is drawn in bands."""
 def frame(scene: Scene, renderer: Renderer, width: int, height: int,
           background=(0, 0, 0)) -> np.ndarray:
     """The scene as `SceneRenderer` draws it, by ``renderer``: a copy."""
-    mesh, albedo = scene_mesh(scene.arm, scene.render)
+    mesh, albedo, _ = scene_mesh(scene.arm, scene.render)
     camera, model = view_camera(scene.view, outline(mesh.vertices), width / height)
     light = zoomed_light(scene.light, scene.view.scale, camera)
     return renderer.render(mesh.vertices, mesh.normals, mesh.triangles, albedo, model, camera,

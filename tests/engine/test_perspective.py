@@ -114,7 +114,7 @@ def test_the_issues_close_up_matches_a_finely_cut_reference(scale):
     scene = Scene.of(load_config(DEFAULT_CONFIG))
     scene = (scene.with_arm(scene.arm.at_flexion(100.0))
              .with_view(yaw=80.0, pitch=-10.0, scale=scale).with_render(shading="phong"))
-    mesh, albedo = scene_mesh(scene.arm, scene.render)
+    mesh, albedo, _ = scene_mesh(scene.arm, scene.render)
     camera, model = view_camera(scene.view, outline(mesh.vertices), 480 / 270)
     assert_matches_a_finely_cut_reference(mesh, albedo, model, camera,
                                           zoomed_light(scene.light, scale, camera), "phong")

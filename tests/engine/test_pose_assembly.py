@@ -40,7 +40,7 @@ def test_each_muscle_blends_from_its_belly_into_its_tendons_the_rest_bone():
     hidden = frozenset({"BRA"})
     for colour_by in ("muscle", "strain"):
         render = ELBOW.render.__class__(**{**vars(ELBOW.render), "colour_by": colour_by})
-        _, albedo = scene_mesh(arm, render, hidden)
+        _, albedo, _ = scene_mesh(arm, render, hidden)
         parts = arm_parts(arm, render.segments, hidden, companion_segments(render.segments))
         bone = np.array(rgb(render.bone_colour), np.float32) / 255
         tendon_colour = np.array(rgb(render.tendon_colour), np.float32) / 255
@@ -63,7 +63,7 @@ def test_the_picture_draws_the_companions_with_fewer_segments_and_exports_keep_t
     render = ELBOW.render
     around = companion_segments(render.segments)
     assert render.segments == 48 and around == 32
-    mesh, _ = scene_mesh(arm, render)
+    mesh, _, _ = scene_mesh(arm, render)
     full = arm_parts(arm, render.segments)  # what export-mesh writes
     light = arm_parts(arm, render.segments, companion_segments=around)
     assert len(mesh.vertices) == sum(len(part.vertices) for part in light.values())

@@ -18,6 +18,7 @@ from biceps.engine.transforms import Light
 
 INF, NAN = math.inf, math.nan
 POINT = "three finite numbers (x, y, z) from -1e+08 to 1e+08 cm"
+GRAPHICS = "'halfblocks', 'auto', 'kitty', 'sixel', 'iterm', 'sextants' or 'quadrants'"
 
 # (field, a value it refuses, what the message must say is allowed)
 VIEW_REFUSES = [
@@ -67,8 +68,9 @@ RENDER_REFUSES = [
     ("bone_colour", "#12345", "a colour written #rrggbb"),
     ("background", "#12161c\n", "a colour written #rrggbb"),
     ("background", "#gg0000", "a colour written #rrggbb"),
-    ("graphics", "png", "'halfblocks', 'auto', 'kitty', 'sixel' or 'iterm'"),
-    ("graphics", None, "'halfblocks', 'auto', 'kitty', 'sixel' or 'iterm'"),
+    ("graphics", "png", GRAPHICS),
+    ("graphics", None, GRAPHICS),
+    ("colors", "16", "'auto', 'truecolor' or '256'"),
 ]
 REFUSALS = ([(View, "view", *case) for case in VIEW_REFUSES]
             + [(Light, "light", *case) for case in LIGHT_REFUSES]
@@ -76,6 +78,7 @@ REFUSALS = ([(View, "view", *case) for case in VIEW_REFUSES]
 TABLES = {View: ViewTable, Light: LightTable, RenderSettings: RenderTable}
 MADE_BY = {View: ViewTable.view, Light: LightTable.light,
            RenderSettings: RenderTable.render_settings}
+
 
 
 @pytest.mark.parametrize("kind, owner, field, value, allowed", REFUSALS)

@@ -18,7 +18,8 @@ ARM26 = Skeleton()
 ON_THE_AXES = dict(origin_forward=0.0, origin_lateral=0.0, insertion_forward=0.0,
                    insertion_lateral=0.0)  # the seed's skeleton: both ends on the bones' axes
 # OpenSim's BIClong at every 10 degrees: benchmarks/arm26_reference.py --write made it.
-REFERENCE = json.loads((Path(__file__).parent / "data" / "arm26_biclong.json").read_text())
+REFERENCE = json.loads(
+    (Path(__file__).parents[2] / "engine" / "data" / "arm26_biclong.json").read_text())
 
 
 def test_a_3_4_5_triangle_bends_the_elbow_to_90_degrees():

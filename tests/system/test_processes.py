@@ -59,6 +59,23 @@ def test_no_engine_module_imports_a_terminal_library_or_the_app():
     assert process.stdout.strip() == "[]"
 
 
+TERMINAL_PROTOCOLS = ["detect", "choose", "palette", "cells", "writing", "kitty", "sixel",
+                      "iterm", "ansi", "printed"]
+
+
+def test_the_terminal_protocols_import_no_textual():
+    # The questions, the choices, the palettes, the encoders and their byte writers, which
+    # a layer of their own is to take (issue 24): the app's Textual stays out of them.
+    process = _python(f"""
+        import importlib, sys
+        for name in {TERMINAL_PROTOCOLS!r}:
+            importlib.import_module("biceps.tui." + name)
+        print(sorted(m for m in sys.modules if m.split('.')[0] == 'textual'))
+    """)
+    assert process.returncode == 0, process.stderr
+    assert process.stdout.strip() == "[]"
+
+
 @pytest.mark.parametrize("argv", [
     ["--help"],
     ["info"],
@@ -79,6 +96,13 @@ def test_snapshot_runs_without_importing_textual_or_rich(tmp_path):
     argv = ["snapshot", str(DEFAULT_CONFIG), "-o", str(out), "--size", "64x48"]
     assert _imported_after(argv, "textual", "rich", "biceps.tui") == []
     assert out.exists()
+
+
+@pytest.mark.parametrize("printed", ["--ansi", "--kitty", "--sixel", "--iterm"])
+def test_snapshot_printed_to_a_terminal_imports_no_textual(printed):
+    # (its output, into the pipe, ends up in the test's output: a small picture)
+    argv = ["snapshot", str(DEFAULT_CONFIG), printed, "--size", "16x10"]
+    assert _imported_after(argv, "textual") == []
 
 
 def test_animate_runs_without_importing_textual_or_rich(tmp_path):

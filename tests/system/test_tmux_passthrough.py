@@ -1,9 +1,11 @@
 """Kitty images through tmux: the app inside tmux, in a terminal that tmux knows as
-xterm-kitty, with allow-passthrough on, sends its frames through tmux's passthrough as
-virtual placements, and its picture's cells are Unicode placeholders that tmux draws as
-text. This test plays the outer terminal in a pseudo-terminal and reads what tmux writes
-to it. (The image's deletion as the app ends is not asserted: tmux passes it on or not,
-as the pane goes, and the placeholders that showed it go with the pane.)"""
+xterm-kitty (and, from its answer to XTVERSION, as kitty 0.28 or later), with
+allow-passthrough on, sends its frames through tmux's passthrough as virtual placements,
+and its picture's cells are Unicode placeholders that tmux draws as text; in an older kitty
+it sends none, and draws sextants, which kitty draws itself. This test plays the outer
+terminal in a pseudo-terminal and reads what tmux writes to it. (The image's deletion as
+the app ends is not asserted: tmux passes it on or not, as the pane goes, and the
+placeholders that showed it go with the pane.)"""
 
 from __future__ import annotations
 
@@ -23,22 +25,30 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 PLACEHOLDER = "\U0010eeee".encode()
+SEXTANT = re.compile("[\U0001fb00-\U0001fb3b]")
 
 
-def _read_until(master: int, output: bytearray, condition, timeout: float) -> bool:
+def _read_until(master: int, output: bytearray, condition, timeout: float,
+                version: bytes) -> bool:
+    """Read what tmux writes until ``condition`` holds, answering tmux's XTVERSION question
+    as kitty ``version``."""
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         if condition(bytes(output)):
             return True
         if select.select([master], [], [], 0.1)[0]:
             try:
-                output += os.read(master, 1 << 16)
+                data = os.read(master, 1 << 16)
             except OSError:
                 return condition(bytes(output))
+            if b"\x1b[>q" in data:
+                os.write(master, b"\x1bP>|kitty(" + version + b")\x1b\\")
+            output += data
     return condition(bytes(output))
 
 
-def test_kitty_images_go_through_tmux_placed_by_placeholders(tmp_path):
+@pytest.mark.parametrize("version", [b"0.35.2", b"0.26.5"])
+def test_kitty_images_go_through_tmux_placed_by_placeholders_from_kitty_028(tmp_path, version):
     if shutil.which("tmux") is None:
         if os.environ.get("CI"):
             pytest.fail("tmux is missing: .ci/run installs it")
@@ -57,10 +67,15 @@ def test_kitty_images_go_through_tmux_placed_by_placeholders(tmp_path):
     os.close(slave)
     output = bytearray()
     try:
+        if version == b"0.26.5":  # no placeholders: the picture in sextants, and no image
+            assert _read_until(master, output, lambda out: SEXTANT.search(out.decode(
+                errors="replace")), timeout=120, version=version), output[-3000:]
+            assert b"\x1b_G" not in output and PLACEHOLDER not in output
+            return
         # A virtual placement of the whole picture, and placeholders.
         assert _read_until(master, output, lambda out: re.search(
             rb"\x1b_Ga=T,f=24,o=z,s=\d+,v=\d+,i=(\d+),U=1,c=\d+,r=\d+,q=2", out)
-            and PLACEHOLDER in out, timeout=120), output[-3000:]
+            and PLACEHOLDER in out, timeout=120, version=version), output[-3000:]
         image_id = re.search(rb"\x1b_Ga=T,[^;]*,i=(\d+),U=1", output)[1]
         # The placeholders' colour is the image id, in the 256-colour palette. (tmux writes
         # a placeholder, then again with each diacritic, backing up over it.)

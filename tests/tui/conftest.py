@@ -12,7 +12,13 @@ from textual.pilot import Pilot
 
 from biceps.engine.config import Config
 from biceps.tui.app import BicepsApp
+from biceps.tui.screens.prompt import Prompt
 from biceps.tui.widgets.viewport import Viewport
+
+
+def screen_rows(app: BicepsApp) -> list[str]:
+    """The text of every row of the screen in front, as the terminal shows it."""
+    return [strip.text for strip in app.screen._compositor.render_strips()]
 
 
 @dataclass
@@ -41,9 +47,14 @@ class Session:
         await self.settle()
 
     async def settle(self) -> None:
-        """Wait until the picture shows the latest scene and every export is written."""
+        """Wait until a dialog has checked what was typed in it, the picture shows the
+        latest scene and every export is written."""
         app, pilot = self.app, self.pilot
         await pilot.pause()
+        for _ in range(1000):
+            if not (isinstance(app.screen, Prompt) and app.screen.checking):
+                break
+            await pilot.pause(0.01)
         exports = [worker for worker in app.workers if worker.group == "export"]
         if exports:  # an empty list would mean every worker, the render loop among them
             await app.workers.wait_for_complete(exports)

@@ -25,6 +25,7 @@ class Corners:
     top-left pixel; records the frames it is given."""
 
     cell = Size(2, 4)
+    aspect = 1.0
 
     def __init__(self, image: str = "", clearing: str = "", fail: bool = False) -> None:
         self.image, self.clearing, self.fail = image, clearing, fail

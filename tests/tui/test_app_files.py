@@ -74,8 +74,8 @@ async def test_save_as_into_a_missing_directory_says_so_and_keeps_the_dialog(bic
     async with biceps() as session:
         await session.pilot.press("c", "ctrl+d")
         await _answer(session, "/nonexistent/dir/x.toml")
-        assert any("there is no directory /nonexistent/dir" in w for w in session.warnings)
         assert isinstance(session.app.screen, Prompt)  # as the export dialog does
+        assert "there is no directory /nonexistent/dir" in session.app.screen.error
         assert session.app.screen.query_one(Input).value == "/nonexistent/dir/x.toml"
         await session.pilot.press("escape")
         assert session.app.unsaved
@@ -104,7 +104,7 @@ async def test_a_directory_is_not_a_file_name(biceps, tmp_path):
         await session.pilot.press("ctrl+d")
         await _answer(session, str(tmp_path))
         assert isinstance(session.app.screen, Prompt)
-        assert any("is a directory" in warning for warning in session.warnings)
+        assert "is a directory" in session.app.screen.error
 
 
 async def test_opening_another_configuration_shows_it(biceps):
@@ -143,7 +143,8 @@ async def test_a_broken_file_is_not_opened_and_the_model_stays(biceps):
         before = session.app.scene
         await session.pilot.press("ctrl+o")
         await _answer(session, str(BROKEN))
-        assert any("not valid TOML" in warning for warning in session.warnings)
+        assert isinstance(session.app.screen, Prompt)
+        assert "not valid TOML" in session.app.screen.error
         assert session.app.scene is before
 
 
@@ -213,10 +214,10 @@ async def test_export_needs_a_png_name_and_a_size(biceps, tmp_path):
     async with biceps() as session:
         await session.pilot.press("e")
         await _answer(session, str(tmp_path / "arm"), "320x200")
-        assert any("must end in .png" in warning for warning in session.warnings)
+        assert "must end in .png" in session.app.screen.error
         await _answer(session, str(tmp_path / "arm.png"), "huge")
-        assert any("not a size" in warning for warning in session.warnings)
         assert isinstance(session.app.screen, Prompt)
+        assert "not a size" in session.app.screen.error
     assert not (tmp_path / "arm.png").exists()
 
 
@@ -225,7 +226,7 @@ async def test_export_into_a_missing_directory_says_so_before_rendering(biceps):
         await session.pilot.press("e")
         await _answer(session, "/nonexistent/dir/x.png", "64x64")
         assert isinstance(session.app.screen, Prompt)
-        assert any("/nonexistent/dir" in warning for warning in session.warnings)
+        assert "/nonexistent/dir" in session.app.screen.error
 
 
 async def test_quit_without_edits_quits(biceps):

@@ -8,7 +8,10 @@ from rich.color import Color
 from rich.console import Console
 from textual.strip import Strip
 
-from biceps.tui.halfblocks import UPPER_HALF, HalfBlocks
+from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.cells import HALF_BLOCKS
+
+UPPER_HALF = HALF_BLOCKS.glyphs[1]
 
 
 def frame_to_strips(frame: np.ndarray) -> list[Strip]:

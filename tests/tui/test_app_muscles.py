@@ -6,12 +6,17 @@ import shutil
 
 import numpy as np
 import pytest
+from PIL import Image
+from textual.widgets import Input
 
 from biceps.configs import FOLDER
 from biceps.engine.config import load_config
+from biceps.engine.scene import SceneRenderer
 from biceps.tui.commands import KeyCommands
+from biceps.tui.screens.prompt import Prompt
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.stats import Stats
+from biceps.tui.widgets.viewport import Viewport
 
 from test_app_nodes import _edit, _text
 
@@ -167,3 +172,49 @@ async def test_an_edit_past_the_most_nodes_of_all_the_muscles_together_is_refuse
         assert app.scene.arm is before
         assert session.warnings[-1] == (f"{total + 10} nodes; a model has at most {total + 9}, "
                                         "all its muscles together")
+
+
+async def test_the_picture_marks_the_picked_muscle_and_rings_the_node_the_table_picks(biceps,
+                                                                                     elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        assert app.scene.marked and app.scene.picked_node is None
+        await pilot.press("t")
+        await session.settle()
+        assert app.scene.selected == 1
+        table = app.screen.query_one(NodeTable)
+        table.focus()
+        await pilot.press("down", "down")
+        await session.settle()
+        assert app.scene.picked_node == table.cursor_row == 2
+        await pilot.press("end")
+        await session.settle()
+        assert app.scene.picked_node == app.scene.arm.muscles[1].node_count - 1
+        await pilot.press("enter")  # the node's own dialog keeps it ringed
+        await session.settle()
+        assert isinstance(app.screen, Prompt)
+        assert app.scene.picked_node == app.scene.arm.muscles[1].node_count - 1
+        await pilot.press("escape")
+        await session.settle()
+        app.screen.query_one(Viewport).focus()  # back to turning the model
+        await session.settle()
+        assert app.scene.picked_node is None
+        assert not app.unsaved  # marking the pick is no edit
+
+
+async def test_an_export_is_the_model_alone_without_the_marks(biceps, elbow, tmp_path):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app = session.app
+        app.screen.query_one(NodeTable).focus()
+        await session.settle()
+        assert app.scene.picked_node == 0
+        out = tmp_path / "marked.png"
+        await session.pilot.press("e")
+        app.screen.query(Input)[0].value = str(out)
+        app.screen.query(Input)[1].value = "160x120"
+        await session.pilot.press("enter")
+        await session.settle()
+        exported = np.asarray(Image.open(out).convert("RGB"))
+        plain = SceneRenderer().render(app.scene.unmarked(), 160, 120)
+        assert np.array_equal(exported, plain)
+        assert not np.array_equal(exported, SceneRenderer().render(app.scene, 160, 120))

@@ -246,9 +246,9 @@ class Draws:
         self.count = 0
         render = SceneRenderer.render
 
-        def counted(renderer, *arguments):
+        def counted(renderer, *arguments, **options):
             self.count += 1
-            return render(renderer, *arguments)
+            return render(renderer, *arguments, **options)
 
         monkeypatch.setattr(SceneRenderer, "render", counted)
 

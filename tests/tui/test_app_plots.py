@@ -11,8 +11,8 @@ from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.viewport import Viewport
 
 
-# The order the curves plot draws its lines in.
-GIRTH, GIRTH_NOW, MOMENT_ARM, MOMENT_ARM_NOW, LENGTH, LENGTH_NOW = range(6)
+# The order a plot against flexion draws its lines in: arm26's, the model's, the mark.
+ARM26, MODEL, NOW = range(3)
 
 
 def _lines(session, plot_id: str):
@@ -47,36 +47,46 @@ async def test_the_profile_and_the_mark_follow_a_contraction_at_once(biceps):
         (rest, now), _, _ = _lines(session, "profile")
         assert now == (muscle.positions.tolist(), muscle.radii.tolist())
         assert rest[1] == muscle.reference_radii.tolist()
-        curves, marks, _ = _lines(session, "curves")
-        assert marks == [arm.flexion]
-        flexions, lengths = curves[LENGTH]
-        assert flexions[0] == 0.0 and flexions[-1] == 130.0
-        assert (lengths[0], lengths[-1]) == pytest.approx(arm.skeleton.length_range()[::-1])
-        assert curves[LENGTH_NOW] == ([arm.flexion], [arm.length])
-        assert curves[GIRTH_NOW] == ([arm.flexion], [muscle.girth])
-        assert curves[MOMENT_ARM_NOW] == ([arm.flexion], [arm.moment_arm])
+        straight = arm.skeleton.length_at(0.0)
+        for plot, now in (("length", arm.length - straight), ("moment-arm", arm.moment_arm)):
+            curves, marks, _ = _lines(session, plot)
+            assert marks == [arm.flexion]
+            flexions, values = curves[MODEL]
+            assert flexions[0] == 0.0 and flexions[-1] == 130.0
+            assert curves[NOW] == ([arm.flexion], [pytest.approx(now)])
+            assert curves[ARM26][0] == flexions
+        curves, _, _ = _lines(session, "length")
+        least, most = arm.skeleton.length_range()
+        assert (curves[MODEL][1][0], curves[MODEL][1][-1]) == pytest.approx((0.0, least - most))
+        # arm26's BIClong, from 424.5754 mm straight to 340.7173 mm at 130 degrees
+        assert curves[ARM26][1][-1] == pytest.approx((340.7173 - 424.5754) / 10)
+        curves, _, _ = _lines(session, "moment-arm")
+        assert curves[ARM26][1][0] == pytest.approx(0.93799)
+        curves, _, _ = _lines(session, "girth")
+        assert curves[1] == ([arm.flexion], [muscle.girth])
 
 
 async def test_the_axes_stay_put_while_the_muscle_contracts(biceps):
     async with biceps() as session:
         await session.pilot.press("p")
         await session.pilot.pause()
-        before = _lines(session, "profile")[2], _lines(session, "curves")[2]
+        plots = ("profile", "length", "moment-arm", "girth")
+        before = [_lines(session, plot)[2] for plot in plots]
         await session.pilot.press("C", "C", "C")
         await session.pilot.pause()
-        assert (_lines(session, "profile")[2], _lines(session, "curves")[2]) == before
+        assert [_lines(session, plot)[2] for plot in plots] == before
 
 
 async def test_an_edited_node_sweeps_the_curves_again(biceps):
     async with biceps() as session:
         await session.pilot.press("p")
         await session.pilot.pause()
-        girth_before = _lines(session, "curves")[0][GIRTH][1]
+        girth_before = _lines(session, "girth")[0][0][1]
         await session.pilot.press("tab", "n")  # a node after the first, halfway to the next
         await session.pilot.pause()
         arm = session.app.scene.arm
         assert arm.muscle.node_count == 16
-        girth_after = _lines(session, "curves")[0][GIRTH][1]
+        girth_after = _lines(session, "girth")[0][0][1]
         assert girth_after != girth_before
         least, most = flexion_range(arm)
         assert girth_after[-1] == pytest.approx(arm.at_flexion(most).muscle.girth)
@@ -103,8 +113,8 @@ async def test_limits_that_leave_one_length_plot_one_point(biceps, config_path):
     async with biceps(on=load_config(config_path)) as session:
         await session.pilot.press("p", "c")
         await session.settle()
-        curves, marks, _ = _lines(session, "curves")
-        assert curves[LENGTH] == ([session.app.scene.arm.flexion], [30.0])
+        curves, marks, _ = _lines(session, "length")
+        assert curves[MODEL] == ([session.app.scene.arm.flexion], [0.0])
         assert any("shortest" in warning for warning in session.warnings)
 
 

@@ -106,7 +106,7 @@ async def test_a_refused_option_keeps_the_dialog_open_and_writes_nothing(
         await session.pilot.press("enter")
         await session.pilot.pause()
         assert isinstance(session.app.screen, RecordPrompt)
-        assert any(message in warning for warning in session.warnings)
+        assert message in session.app.screen.error
         assert session.app.screen_stack[0].query_one(Recorder).busy is None
     assert list(folder.iterdir()) == []
 

@@ -110,10 +110,10 @@ async def test_a_caption_s_row_is_repainted_only_when_it_changes(biceps, painted
 async def test_a_slow_picture_says_it_is_being_drawn_until_it_comes(biceps, monkeypatch):
     render = SceneRenderer.render
 
-    def slow_phong(renderer, scene, width, height):
+    def slow_phong(renderer, scene, width, height, framed=None, pixel_aspect=1.0):
         if scene.render.shading == "phong":  # as a first Phong frame compiles its kernels
             time.sleep(1.0)
-        return render(renderer, scene, width, height)
+        return render(renderer, scene, width, height, framed, pixel_aspect)
 
     monkeypatch.setattr(SceneRenderer, "render", slow_phong)
     async with biceps() as session:
@@ -180,3 +180,18 @@ async def test_a_frame_goes_through_textual_while_something_is_over_the_picture(
 async def _caught_up(pilot, viewport: Viewport) -> None:
     await until(pilot, lambda: viewport.up_to_date)
     await pilot.pause()
+
+
+@pytest.mark.parametrize("size", [(80, 24), (200, 60)])
+async def test_m_changes_the_picture_at_every_size(biceps, size):
+    # Both pictures are small (at most 120 pixel rows), drawn 2 x 2 without anti-aliasing:
+    # with it, 4 x 4.
+    async with biceps(size=size) as session:
+        viewport = session.app.screen.query_one(Viewport)
+        rows = range(viewport.size.height)
+        before = [viewport.render_line(y) for y in rows]
+        assert "AA 2x2 (small)" in viewport.border_subtitle
+        await session.pilot.press("m")
+        await session.settle()
+        assert "AA 4x4 (small)" in viewport.border_subtitle
+        assert [viewport.render_line(y) for y in rows] != before

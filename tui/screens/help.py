@@ -37,14 +37,18 @@ class HelpScreen(Dialog[None]):
     def _write(self) -> None:
         # Headings in the theme's accent, as Textual's own Markdown has them, rather than
         # Rich's magenta: a terminal's magenta may be the muscle's red.
-        # Read as Textual reads it: the ansi themes' accents ("ansi_green") are no colours
-        # to Rich.
-        theme = self.app.current_theme
-        accent = Color.parse(theme.accent or theme.primary).rich_color
-        headings = Theme({f"markdown.h{level}": Style(bold=True, color=accent)
-                          for level in (1, 2, 3)})
+        # Read by Textual: the ANSI theme's colours (ansi_green) are not Rich's names.
+        accent = Color.parse(self.app.current_theme.accent or self.app.current_theme.primary)
+        heading = Style(bold=True, color=accent.rich_color)
+        headings = Theme({f"markdown.h{level}": heading for level in (1, 2, 3)})
         logs = self.query(RichLog)
-        if not logs:  # closed before it was laid out: ? then escape, at once
+        if not logs:
+            return  # closed again before it was laid out (? then escape at once)
+        log = logs.first()
+        if not log.scrollable_content_region.width:  # not laid out yet: a busy app, a storm
+            self.call_after_refresh(self._write)
             return
         with self.app.console.use_theme(headings):
-            logs.first().write(Markdown(HELP))
+            # As wide as the log's room beside its scrollbar, which RichLog would widen to
+            # its min_width, 78, and cut off in a terminal of 80 columns.
+            log.write(Markdown(HELP), width=log.scrollable_content_region.width)

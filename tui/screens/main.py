@@ -14,13 +14,14 @@ from textual.content import Content
 from textual.events import Resize, ScreenSuspend
 from textual.screen import Screen
 from textual.widget import Widget
-from textual.widgets import Footer, Static
+from textual.widgets import Static
 
 from biceps.engine.arm import Arm
 from biceps.engine.scene import Scene
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.pacing import Pacer
 from biceps.tui.pixels import ImageEncoder
+from biceps.tui.widgets.footer import FittedFooter
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.recorder import Recorder
@@ -33,6 +34,14 @@ SMALLEST_USEFUL = (60, 16)
 NARROW = 100
 """Columns below which the side panel is hidden unless asked for: its 32 columns would
 take a third of the picture's width or more."""
+
+
+FOOTER_KEPT_LONGEST = (
+    "help", "quit", "edit_node", "insert_node", "delete_node", "subdivide", "turn_in_view",
+    "turn", "change_length", "save", "export", "toggle_plots", "record",
+)
+"""The footer's keys, the first dropped last where they do not all fit (tui/widgets/footer.py):
+help and quitting always, the node table's while it has the focus."""
 
 
 class MainScreen(Screen[None]):
@@ -65,7 +74,7 @@ class MainScreen(Screen[None]):
             f"Please make it at least {width} columns by {height} rows.",
             id="too-small",
         )
-        yield Footer()
+        yield FittedFooter(FOOTER_KEPT_LONGEST)
 
     def on_mount(self) -> None:
         self.watch(self.app, "scene", self._show_scene)

@@ -9,10 +9,11 @@ dialog is still open.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Awaitable, Callable
 
 from textual.app import ComposeResult
-from textual.containers import Grid, Horizontal, Vertical
-from textual.widgets import Button, Input, Label
+from textual.containers import Grid
+from textual.widgets import Input, Label
 
 from biceps.engine.animate import FlexCycle, check_cycle
 from biceps.engine.bounds import exactly
@@ -59,10 +60,12 @@ def as_recording(path: Path, size: tuple[int, int], start: float, end: float, fr
 class RecordPrompt(Prompt):
     """Asks where and how to record the flex cycle of ``scene``; dismisses with the values
     for :func:`as_recording`, or None when cancelled. ``last`` fills the fields as they were
-    the last time; ``read`` is the model's file, which a recording may not replace."""
+    the last time; ``read`` is the model's file, which a recording may not replace;
+    ``replace`` asks whether to replace a file that exists (True to)."""
 
-    def __init__(self, scene: Scene, default_path: Path, last: Recording | None = None,
-                 read: Path | None = None) -> None:
+    def __init__(self, scene: Scene, default_path: Path, last: Recording | None = None, *,
+                 read: Path | None = None,
+                 replace: Callable[[Path], Awaitable[bool]]) -> None:
         least, most = flexion_range(scene.arm)
         if last is None:
             last = Recording(default_path, 640, 360, FlexCycle(least, most, 60), 25.0)
@@ -79,24 +82,21 @@ class RecordPrompt(Prompt):
             Field("Bounce or loop", "bounce" if cycle.bounce else "loop", parse_motion),
         ]
         self._scene, self._read = scene, read
+        self._replace = replace
         super().__init__("Record the flex cycle", fields, accept="Record", check=self._check)
 
-    def compose(self) -> ComposeResult:
-        with Vertical(classes="dialog-box") as box:
-            box.border_title = self._title
-            with Grid(classes="record-fields"):
-                for field in self._fields:
-                    yield Label(field.label)
-                    yield Input(field.text, suggester=field.suggester, compact=True,
-                                restrict=PRINTABLE, max_length=LONGEST)
-            yield Label(f"As {', '.join(ANIMATION_FORMATS)}; MP4 needs biceps[video].",
-                        classes="record-note", markup=False)
-            with Horizontal(classes="dialog-buttons"):
-                yield Button(self._accept, variant="primary", id="accept")
-                yield Button("Cancel (esc)", id="cancel")
+    def compose_fields(self) -> ComposeResult:
+        with Grid(classes="record-fields"):
+            for field in self._fields:
+                yield Label(field.label)
+                yield Input(field.text, suggester=field.suggester, compact=True,
+                            restrict=PRINTABLE, max_length=LONGEST)
+        yield Label(f"As {', '.join(ANIMATION_FORMATS)}; MP4 needs biceps[video].",
+                    classes="record-note", markup=False)
 
-    def _check(self, *values) -> None:
+    async def _check(self, *values) -> bool:
         recording = as_recording(*values)
         check_animation(recording.path, recording.width, recording.height, recording.fps,
                         self._read)
         check_cycle(self._scene, recording.cycle, recording.width, recording.height)
+        return not recording.path.exists() or await self._replace(recording.path)

@@ -18,7 +18,7 @@ from textual.reactive import reactive
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
-from biceps.engine.bounds import GROWTH, RADIUS, Limits
+from biceps.engine.bounds import GROWTH, NODES, RADIUS, Limits
 from biceps.engine.muscle import Muscle
 from biceps.tui.changes import with_node
 from biceps.tui.parse import parse_number
@@ -32,10 +32,10 @@ class NodeTable(ScrollView, can_focus=True):
     """The nodes of a muscle, a row each under a header that stays; the cursor picks one."""
 
     BINDINGS = [
-        Binding("enter", "edit_node", "Edit node"),
-        Binding("n,insert", "insert_node", "Insert after"),
-        Binding("delete,backspace", "delete_node", "Delete"),
-        Binding("slash", "subdivide", "Subdivide all"),
+        Binding("enter", "edit_node", "Edit", tooltip="Edit the node"),
+        Binding("n,insert", "insert_node", "Insert", tooltip="Insert a node after this one"),
+        Binding("delete,backspace", "delete_node", "Delete", tooltip="Delete the node"),
+        Binding("slash", "subdivide", "Subdivide", tooltip="Subdivide every segment"),
         Binding("up", "move(-1)", "Previous node", show=False),
         Binding("down", "move(1)", "Next node", show=False),
         Binding("pageup", "page(-1)", "Page up", show=False),
@@ -94,6 +94,14 @@ class NodeTable(ScrollView, can_focus=True):
             self.what = what
             self.undoable_note = undoable_note
 
+    class NodePicked(Message):
+        """The node the table picks for the picture to ring: ``node`` (0-based), or None
+        while the table has not the focus (the picture marks nothing then)."""
+
+        def __init__(self, node: int | None) -> None:
+            super().__init__()
+            self.node = node
+
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id)
         self._muscle: Muscle | None = None
@@ -134,6 +142,16 @@ class NodeTable(ScrollView, can_focus=True):
     def watch_cursor_row(self, old: int, new: int) -> None:
         self._scroll_to_cursor()
         self.refresh()
+        if self.has_focus:
+            self.post_message(self.NodePicked(new))
+
+    def on_focus(self) -> None:
+        self.post_message(self.NodePicked(self.cursor_row))
+
+    def on_blur(self) -> None:
+        # A dialog over the screen (the node's own, opened with enter) keeps the ring.
+        if self.screen is self.app.screen:
+            self.post_message(self.NodePicked(None))
 
     def _scroll_to_cursor(self) -> None:
         rows = max(self.scrollable_content_region.height - 1, 1)  # under the header
@@ -219,6 +237,11 @@ class NodeTable(ScrollView, can_focus=True):
         index = self.cursor_row
         self._request(lambda current: current.with_node_inserted(index),
                       f"a node inserted after node {index + 1}")
+        # The cursor on the new node at once, so that the keys typed next (delete) act on
+        # it: they are handled before the muscle with it comes back to the table. A node
+        # goes between two others, so its row is one the table has now.
+        if index < self.row_count - 1 and self.row_count < NODES:
+            self.cursor_row = index + 1
 
     def action_delete_node(self) -> None:
         index = self.cursor_row

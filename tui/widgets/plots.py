@@ -1,12 +1,13 @@
 """The plots: how the muscle's shape and its numbers change as the elbow bends.
 
-Left, the radius along the muscle now, over its rest shape; right, the length, girth and
-moment arm across every flexion the arm allows, with the current pose marked. The numbers are
-engine/sweep.py's, the ones ``biceps sweep`` prints; plotext draws them (textual-plotext).
-The axes stay put while the muscle changes, so a contraction shows as the profile growing
-and the mark moving, not as the scale jumping. Lines are drawn with quadrant blocks rather
-than braille: fonts that lack braille, or space it unevenly, are common, and a terminal that
-shows the half-block picture shows these.
+Four panels side by side, each one quantity on its own axis: the radius along the muscle
+now, over its rest shape; and against every flexion the arm allows, with the current pose
+marked, the length change and the moment arm, each beside OpenSim's arm26 biceps
+(engine/reference.py), and the girth. The numbers are engine/sweep.py's, the ones
+``biceps sweep`` prints; plotext draws them (textual-plotext). The axes stay put while the
+muscle changes, so a contraction shows as the profile growing and the mark moving, not as
+the scale jumping. Lines are drawn in braille dots, the finest plotext has (2 x 4 a cell):
+with quadrant blocks (2 x 2) a curve over a panel's few rows ran in steps a cell wide.
 """
 
 from __future__ import annotations
@@ -21,22 +22,23 @@ from textual_plotext import PlotextPlot
 from biceps.engine.arm import Arm
 from biceps.engine.config import rgb
 from biceps.engine.muscle import Muscle
+from biceps.engine.reference import Curve, arm26_biclong
 from biceps.engine.skeleton import Skeleton
 from biceps.engine.sweep import Row, angles, flexion_range, sweep
 
-CURVE_POINTS = 121  # about one a degree across the joint's range
+CURVE_POINTS = 121
+"""About one a degree across the joint's range: more than a panel has columns of braille
+dots up to 60 cells wide."""
 PROFILE_POINTS = 400
-"""The most points a profile is drawn with: more than a plot has columns of quadrant pixels
-even across a wide terminal. A muscle of 16,384 nodes drawn whole took 0.2 s a change."""
-MARGIN = 1.08  # room above the largest value and below the smallest
-# The right axis (girth, moment arm) reaches to twice the largest girth, so that the girth's
-# nearly level line runs across the middle, where the length falls fastest: the two lines
-# cross there, instead of running along each other near the top.
-RIGHT_HEADROOM = 2.0
+"""The most points a profile is drawn with: more than a plot has columns of dots even
+across a wide terminal. A muscle of 16,384 nodes drawn whole took 0.2 s a change."""
+MARGIN = 0.08  # of a quantity's span, left above its largest value and below its least
+DOTS = "braille"
 
 # The colours of the lines, and of their names in the titles that serve as legends.
 NOW, REST = "#e06c5a", "#8c8c8c"
-LENGTH, GIRTH, MOMENT_ARM = "#e5c07b", "#e06c5a", "#61afef"
+MODEL, REFERENCE = "#e5c07b", "#56b6c2"
+GIRTH = "#e06c5a"
 MARK = "#5c6370"
 
 
@@ -53,12 +55,12 @@ class _Curves:
             return cls(sweep(arm, [least]))
         return cls(sweep(arm, angles(least, most, (most - least) / (CURVE_POINTS - 1))))
 
-    def column(self, name: str) -> list[float]:
-        return [getattr(row, name) for row in self.rows]
+    def column(self, name: str) -> np.ndarray:
+        return np.array([getattr(row, name) for row in self.rows])
 
 
 class Plots(Horizontal):
-    """Two plots side by side; :meth:`show` redraws them for an arm."""
+    """Four plots side by side; :meth:`show` redraws them for an arm."""
 
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id)
@@ -67,15 +69,17 @@ class Plots(Horizontal):
         self._arm: Arm | None = None  # the arm to draw, once shown
 
     def compose(self) -> ComposeResult:
-        profile = PlotextPlot(id="profile")
-        profile.border_title = f"radius, cm: [{NOW}]━ now[/]  [{REST}]━ at rest[/]"
-        profile.border_subtitle = "along the muscle, cm"
-        curves = PlotextPlot(id="curves")
-        curves.border_title = (f"cm: [{LENGTH}]━ length[/]  [{GIRTH}]━ girth[/]  "
-                               f"[{MOMENT_ARM}]━ moment arm[/]")
-        curves.border_subtitle = "flexion, degrees · length: left axis"
-        yield profile
-        yield curves
+        # Short enough for a quarter of 100 columns: arm26's muscle is named in the help.
+        legend = f"[{MODEL}]━ model[/] [{REFERENCE}]━ arm26[/]"
+        for name, title, subtitle in (
+            ("profile", "radius, cm", f"[{NOW}]━ now[/] [{REST}]━ at rest[/]"),
+            ("length", "length change, cm", legend),
+            ("moment-arm", "moment arm, cm", legend),
+            ("girth", f"[{GIRTH}]girth[/], cm", "flexion, degrees"),
+        ):
+            plot = PlotextPlot(id=name)
+            plot.border_title, plot.border_subtitle = title, subtitle
+            yield plot
 
     def show(self, arm: Arm) -> None:
         """Draw the plots of ``arm``: now if they are shown, else once they are. (The sweep
@@ -93,7 +97,18 @@ class Plots(Horizontal):
     def _draw(self, arm: Arm) -> None:
         curves = self._curves_of(arm)
         self._draw_profile(arm.muscle, curves)
-        self._draw_curves(arm, curves)
+        flexions = curves.column("flexion")
+        lengths = curves.column("length")
+        reference = arm26_biclong()
+        start = flexions[0]  # the length change is from here, the model's and arm26's
+        self._draw_against_flexion(
+            "length", arm.flexion, flexions, lengths - lengths[0], arm.length - lengths[0],
+            reference.length_change(flexions, start), reference)
+        self._draw_against_flexion(
+            "moment-arm", arm.flexion, flexions, curves.column("moment_arm"), arm.moment_arm,
+            np.interp(flexions, reference.flexion, reference.moment_arm), reference)
+        self._draw_against_flexion(
+            "girth", arm.flexion, flexions, curves.column("girth"), arm.muscle.girth)
 
     def _curves_of(self, arm: Arm) -> _Curves:
         # The sweep depends on the rest shape, not on the current length: a contraction only
@@ -109,32 +124,37 @@ class Plots(Horizontal):
         plt.clear_data()
         shown = _spread(muscle.node_count)
         rest = np.linspace(0.0, muscle.reference_length, muscle.node_count)[shown]
-        plt.plot(rest.tolist(), muscle.reference_radii[shown].tolist(), marker="hd",
+        plt.plot(rest.tolist(), muscle.reference_radii[shown].tolist(), marker=DOTS,
                  color=rgb(REST))
-        plt.plot(muscle.positions[shown].tolist(), muscle.radii[shown].tolist(), marker="hd",
+        plt.plot(muscle.positions[shown].tolist(), muscle.radii[shown].tolist(), marker=DOTS,
                  color=rgb(NOW))
-        longest = max(max(curves.column("length")), muscle.reference_length)
+        longest = max(curves.column("length").max(), muscle.reference_length)
         plt.xlim(0.0, longest)
-        plt.ylim(0.0, MARGIN * max(curves.column("max_radius") + [muscle.reference_radii.max()]))
+        highest = max(curves.column("max_radius").max(), muscle.reference_radii.max())
+        plt.ylim(0.0, (1 + MARGIN) * highest)
         plot.refresh()
 
-    def _draw_curves(self, arm: Arm, curves: _Curves) -> None:
-        plot = self.query_one("#curves", PlotextPlot)
+    def _draw_against_flexion(self, name: str, flexion: float, flexions: np.ndarray,
+                              values: np.ndarray, now: float,
+                              reference: np.ndarray | None = None,
+                              curve: Curve | None = None) -> None:
+        """One quantity's ``values`` (k,) at ``flexions`` (k,), ``now`` at ``flexion``
+        marked, and ``reference`` (k,), the same quantity of ``curve``, behind it."""
+        plot = self.query_one(f"#{name}", PlotextPlot)
         plt = plot.plt
         plt.clear_data()
-        flexions = curves.column("flexion")
-        plt.vline(arm.flexion, color=rgb(MARK))
-        now = {"length": arm.length, "girth": arm.muscle.girth, "moment_arm": arm.moment_arm}
-        # The length last, so that where the lines cross it is drawn over the others.
-        for name, colour, side in (("girth", GIRTH, "right"), ("moment_arm", MOMENT_ARM, "right"),
-                                   ("length", LENGTH, "left")):
-            plt.plot(flexions, curves.column(name), marker="hd", color=rgb(colour), yside=side)
-            plt.scatter([arm.flexion], [now[name]], marker="●", color=rgb(colour), yside=side)
+        plt.vline(flexion, color=rgb(MARK))
+        if reference is not None:
+            plt.plot(flexions.tolist(), reference.tolist(), marker=DOTS, color=rgb(REFERENCE))
+        plt.plot(flexions.tolist(), values.tolist(), marker=DOTS,
+                 color=rgb(GIRTH if reference is None else MODEL))
+        plt.scatter([flexion], [now], marker="●", color=rgb(GIRTH if reference is None else MODEL))
         if flexions[-1] > flexions[0]:
             plt.xlim(flexions[0], flexions[-1])
-        lengths = curves.column("length")
-        plt.ylim(min(lengths) / MARGIN, max(lengths) * MARGIN, yside="left")
-        plt.ylim(0.0, RIGHT_HEADROOM * max(curves.column("girth")), yside="right")
+        shown = values if reference is None else np.concatenate([values, reference])
+        low, high = shown.min(), shown.max()
+        room = MARGIN * (high - low) or MARGIN * max(abs(high), 1.0)  # one point: a span
+        plt.ylim(low - room, high + room)
         plot.refresh()
 
 

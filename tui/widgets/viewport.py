@@ -10,6 +10,10 @@ image, for an encoder that sends one), and a new frame refreshes only the lines 
 changed (none, if the picture is the same). The captions on the border say how the picture
 on screen was made, so they change with it.
 
+Until the first frame comes on a first run (an empty numba cache, ``tui/ahead.py``), the
+picture's place says that the renderer is being prepared, with the parts done and the
+seconds so far; the keys work meanwhile.
+
 A frame is handed to the UI only when the :class:`~tui.pacing.Pacer` says the terminal has
 taken the last one; meanwhile the worker draws the next (the newest request), so that only
 its encoding is left to do once the terminal has answered (see `STALE_AFTER`).
@@ -36,6 +40,7 @@ from typing import Sequence
 import numpy as np
 from rich.color import Color
 from rich.console import Console
+from rich.segment import Segment
 from rich.style import Style
 from textual import events, work
 from textual.filter import ANSIToTruecolor, LineFilter
@@ -48,21 +53,28 @@ from textual.widget import Widget
 
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer, supersampling
+from biceps.tui.ahead import Preparation, preparing
 from biceps.tui.encoder import Picture, PictureEncoder
-from biceps.tui.halfblocks import HalfBlocks
+from biceps.tui.halfblocks import HalfBlocks, TextCells
 from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer
+from biceps.tui.pixels import ImageEncoder
 from biceps.tui.prerendered import PrerenderedStrip, console_system
 from biceps.tui.palette import Palette256, background_colour
 from biceps.tui.palette import colour as palette_colour
 
 
+MESSAGE = Style(color="#b8b8b8")  # the first run's message, on the picture's background
 DRAW_TRIES = 8  # refreshes to wait for a frame to be written before pacing on regardless
 
 BUSY_AFTER = 0.3
 """Seconds without a new frame, while one is wanted, before the caption says the picture is
 being drawn: a first Phong frame compiles its kernels, a muscle of many nodes takes long."""
 BUSY_CAPTION = "drawing…"
+
+PREPARING_EVERY = 0.5
+"""Seconds between updates of a first run's message (``tui/ahead.py``), until the first
+picture comes: the parts of the compilation done, and the seconds it has taken so far."""
 
 STALE_AFTER = 2 / 60
 """Seconds after which a frame drawn ahead is drawn again if a newer scene is waiting by
@@ -79,6 +91,7 @@ class _Request:
     scene: Scene
     width: int  # pixels
     height: int  # pixels
+    aspect: float  # a pixel's width over its height on the screen
 
 
 @dataclass(frozen=True)
@@ -134,15 +147,15 @@ class Viewport(Widget, can_focus=True):
         super().__init__(id=id)
         self._pacer = pacer
         encoder = HalfBlocks() if encoder is None else encoder
-        # Half-blocks in a 256-colour terminal: every frame mapped onto its palette as a
-        # whole (tui/palette.py), where Textual would map each colour on its own. The lines
-        # carry their text for this terminal's colours.
+        # Text in a 256-colour terminal: every frame mapped onto its palette as a whole
+        # (tui/palette.py), where Textual would map each colour on its own. The lines carry
+        # their text for this terminal's colours.
         self._palette: Palette256 | None = None
         system = console_system(self.app.console)
-        if isinstance(encoder, HalfBlocks) and system == "256":
-            self._palette, encoder = Palette256(), HalfBlocks(palette_colour, system)
-        elif isinstance(encoder, HalfBlocks) and system != "truecolor":
-            encoder = HalfBlocks(color_system=system)
+        if isinstance(encoder, TextCells) and system == "256":
+            self._palette, encoder = Palette256(), encoder.recoloured(palette_colour, system)
+        elif isinstance(encoder, TextCells) and system != "truecolor":
+            encoder = encoder.recoloured(color_system=system)
         self._encoder = encoder
         self._scene: Scene | None = None
         self._requests: LatestOnly[_Request] = LatestOnly()
@@ -165,6 +178,7 @@ class Viewport(Widget, can_focus=True):
         self._captioning: tuple[Region, bool] | None = None
         self._progress_at = 0.0  # when the last frame came, or the wait for one began
         self._progress_timer: Timer | None = None
+        self._preparing_timer: Timer | None = None
 
     @property
     def up_to_date(self) -> bool:
@@ -176,10 +190,20 @@ class Viewport(Widget, can_focus=True):
         background = rgb(scene.render.background)
         self._background = Style(bgcolor=Color.from_rgb(*background) if self._palette is None
                                  else background_colour(background))
+        if isinstance(self._encoder, ImageEncoder):
+            self._encoder.background = self._background
         self._request_frame()
 
     def on_mount(self) -> None:
         self._render_frames()
+        if preparing() is not None:
+            self._preparing_timer = self.set_interval(PREPARING_EVERY, self._prepared_yet)
+
+    def _prepared_yet(self) -> None:
+        if self._strips and self._preparing_timer is not None:
+            self._preparing_timer.stop()
+            self._preparing_timer = None
+        self.refresh()  # the message's progress, or the picture that replaced it
 
     def on_unmount(self) -> None:
         self._requests.close()
@@ -223,9 +247,8 @@ class Viewport(Widget, can_focus=True):
         if self.up_to_date:
             self._progress_at = monotonic()
         self._requested += 1
-        self._requests.put(
-            _Request(self._requested, self._scene, width * cell.width, height * cell.height)
-        )
+        self._requests.put(_Request(self._requested, self._scene, width * cell.width,
+                                    height * cell.height, self._encoder.aspect))
         self._watch_progress()
 
     def _watch_progress(self) -> None:
@@ -263,7 +286,8 @@ class Viewport(Widget, can_focus=True):
         """The frame of ``request``, valid until ``renderer`` draws again, or the error
         that stopped it."""
         try:
-            frame = renderer.render(request.scene, request.width, request.height)
+            frame = renderer.render(request.scene, request.width, request.height,
+                                    pixel_aspect=request.aspect)
             if self._palette is not None:
                 frame = self._palette.mapped(frame, rgb(request.scene.render.background))
         except Exception as error:
@@ -523,6 +547,8 @@ class Viewport(Widget, can_focus=True):
         return self._line(y, self.size.width)
 
     def _line(self, y: int, width: int) -> Strip:
+        if not self._strips and (preparation := preparing()) is not None:
+            return self._preparing_line(preparation, y, width)
         if y >= len(self._strips):
             return Strip.blank(width, self._background)
         strip = self._strips[y]
@@ -530,6 +556,20 @@ class Viewport(Widget, can_focus=True):
             return strip
         # A frame of the old size, until the one for the new size arrives.
         return strip.crop_extend(0, width, self._background)
+
+    def _preparing_line(self, preparation: Preparation, y: int, width: int) -> Strip:
+        """Line ``y`` of a first run's message, in the middle of the picture's place."""
+        done, parts = preparation.parts()
+        compiling = " and ".join(preparation.compiling())
+        lines = ["Preparing the renderer: first run only",
+                 f"{done} of {parts} parts done · {monotonic() - preparation.started:.0f} s",
+                 f"compiling {compiling}" if compiling else "drawing the first picture",
+                 "the keys work meanwhile"]
+        index = y - (self.size.height - len(lines)) // 2
+        if not 0 <= index < len(lines):
+            return Strip.blank(width, self._background)
+        text = lines[index][:width].center(width)
+        return Strip([Segment(text, self._background + MESSAGE)], width)
 
     def on_mouse_down(self, event: events.MouseDown) -> None:
         self.capture_mouse()
@@ -546,7 +586,7 @@ class Viewport(Widget, can_focus=True):
         pan = event.button != 1 or event.ctrl or event.shift or event.meta
         # A cell is cell.width pixels across; the picture is rows * cell.height pixels tall.
         cell = self._encoder.cell
-        across = event.delta_x * cell.width / (rows * cell.height)
+        across = event.delta_x * cell.width * self._encoder.aspect / (rows * cell.height)
         self.post_message(self.Dragged(across, event.delta_y / rows, pan))
 
     def on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:

@@ -1,0 +1,96 @@
+"""The help and the footer fit the terminal, 80 columns too (every key in the help:
+test_app_screens.py)."""
+
+from importlib.resources import files
+
+import pytest
+from textual.widgets import RichLog
+from textual.widgets._footer import FooterKey
+
+from biceps.tui.screens.help import HelpScreen
+from biceps.tui.widgets.footer import FittedFooter
+from biceps.tui.widgets.node_table import NodeTable
+from conftest import screen_rows
+from waiting import until
+
+HELP = files("biceps.tui").joinpath("help.md").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("size", [(80, 24), (100, 30), (200, 60)])
+async def test_the_help_is_wrapped_beside_its_scrollbar(biceps, size):
+    async with biceps(size) as session:
+        await session.pilot.press("question_mark")
+        await session.pilot.pause(0.2)
+        log = session.app.screen.query_one(RichLog)
+        room = log.scrollable_content_region.width
+        assert log.virtual_size.width <= room
+        assert not log.show_horizontal_scrollbar
+        assert max(line.cell_length for line in log.lines) <= room
+        # The first paragraph whole, every word of it, in order.
+        shown = " ".join(line.text.strip() for line in log.lines)
+        first = " ".join(HELP.split("\n\n")[1].split()).replace("`", "")
+        assert first in " ".join(shown.split())
+
+
+async def test_the_help_written_before_it_is_laid_out_still_shows_every_word(biceps,
+                                                                            monkeypatch):
+    # Opened under a storm of keys, the help wrote itself before it had a width, and
+    # showed an empty box.
+    monkeypatch.setattr(HelpScreen, "on_mount", lambda screen: screen._write())
+    async with biceps() as session:
+        await session.pilot.press("question_mark")
+        log = session.app.screen.query_one(RichLog)
+        await until(session.pilot, lambda: log.lines)
+        shown = " ".join(" ".join(line.text.strip() for line in log.lines).split())
+        assert " ".join(HELP.split("\n\n")[1].split()).replace("`", "") in shown
+
+
+def _footer_keys(session) -> list[FooterKey]:
+    footer = session.app.screen.query_one(FittedFooter)
+    return [key for key in footer.query(FooterKey) if key.display and key.parent.display]
+
+
+async def _footer_settled(session) -> None:
+    for _ in range(3):  # laid out, measured, the keys of least worth dropped
+        await session.pilot.pause(0.1)
+
+
+@pytest.mark.parametrize("focus", ["picture", "node table"])
+@pytest.mark.parametrize("width", [60, 80, 100])
+async def test_the_footer_shows_whole_keys_only(biceps, focus, width):
+    async with biceps((width, 24)) as session:
+        if focus == "node table":
+            session.app.screen.query_one(NodeTable).focus()
+        await _footer_settled(session)
+        keys = _footer_keys(session)
+        palette = next(key for key in keys if key.has_class("-command-palette"))
+        for key in keys:
+            if key is not palette:
+                assert key.region.right <= palette.region.x, key.description
+        row = screen_rows(session.app)[-1]
+        for key in keys:
+            assert f"{key.key_display} {key.description}".strip() in row
+        actions = {key.action for key in keys}
+        assert {"help", "quit"} <= actions  # always
+        if focus == "node table":
+            assert {"edit_node", "insert_node", "delete_node"} <= actions
+
+
+async def test_a_wide_footer_has_the_plots_and_the_recording_too(biceps):
+    async with biceps((80, 24)) as session:
+        await _footer_settled(session)
+        assert "toggle_plots" not in {key.action for key in _footer_keys(session)}
+        await session.pilot.resize_terminal(120, 30)
+        await _footer_settled(session)
+        shown = {key.action for key in _footer_keys(session)}
+        assert {"toggle_plots", "record", "export", "save", "help", "quit"} <= shown
+
+
+async def test_the_help_opens_in_the_ansi_theme(biceps):
+    # Its accent is Textual's ansi_green, which Rich does not know by that name.
+    async with biceps() as session:
+        session.app.theme = "ansi-dark"
+        await session.pilot.press("question_mark")
+        await session.pilot.pause(0.2)
+        assert session.app.screen.query_one(RichLog).lines
+        assert session.app.failure is None

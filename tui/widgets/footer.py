@@ -1,0 +1,100 @@
+"""The footer: Textual's own, compact, less the keys of least worth that do not fit.
+
+Textual's footer lays every key shown out in one row and, when they are too many for the
+width, lets the last ones run under the command palette's key, cut off mid-word ("c
+Contrac▏^p palette" at 80 columns with the node table's keys in front). This one drops
+whole keys instead, those of least worth first, until the rest fit; every key is still in
+the help (``?``) and the command palette.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable, Sequence
+
+from textual.events import Resize
+from textual.widget import Widget
+from textual.widgets import Footer
+from textual.widgets._footer import FooterKey, FooterLabel, KeyGroup  # not exported by 8.x
+
+
+class FittedFooter(Footer):
+    """A compact footer that drops the keys of least worth until the rest fit its width.
+
+    ``kept_longest``: the actions (their names, without arguments) in the order they are
+    dropped last: the first is dropped last of all. An action not named goes before them.
+    """
+
+    DEFAULT_CSS = """
+    FittedFooter.-compact FooterLabel {
+        margin-right: 1;  /* Textual's compact footer runs a group's name into the next key */
+    }
+    """
+
+    def __init__(self, kept_longest: Sequence[str], *, id: str | None = None) -> None:
+        super().__init__(id=id, compact=True)
+        self._rank = {action: rank for rank, action in enumerate(kept_longest)}
+        self._laid_out_for = 0  # the width the keys were last laid out and fitted for
+
+    def on_resize(self, event: Resize) -> None:
+        # Wider, a key dropped may fit again: lay them all out anew, then drop. Only for a
+        # new width: Textual sends Resize for a new virtual size too, which each drop makes.
+        if event.size.width != self._laid_out_for:
+            self._laid_out_for = event.size.width
+            self.call_after_refresh(self.recompose)
+
+    async def recompose(self) -> None:
+        # (Textual's footer recomposes whenever the keys that apply change: the focus moves)
+        await super().recompose()
+        self.call_after_refresh(self._fit)
+
+    def _fit(self) -> None:
+        """Keep the keys of most worth that fit beside the docked ones (the palette's key),
+        each as wide as it was laid out, all of them shown."""
+        units = self._units()
+        if any(not widget.region for unit in units for widget in unit):
+            self.call_after_refresh(self._fit)  # not laid out yet
+            return
+        room = self.size.width - sum(_width(widget) for widget in self._docked())
+        for unit in sorted(units, key=self._worth, reverse=True):
+            width = sum(_width(widget) for widget in unit)
+            if width <= room:
+                room -= width
+            else:
+                room = 0  # none after it either: the keys kept are the most worth
+                for widget in unit:
+                    widget.display = False
+
+    def _docked(self) -> Iterable[Widget]:
+        return (child for child in self.children if child.styles.dock != "none")
+
+    def _units(self) -> list[list[Widget]]:
+        """The keys that go or stay together: a group of keys and its label, or the keys of
+        one action (c and x, contract and stretch, both change the length)."""
+        units: list[list[Widget]] = []
+        for child in self.children:
+            if child.styles.dock != "none":
+                continue
+            if units and (isinstance(child, FooterLabel)
+                          or _action(child) and _action(child) == _action(units[-1][-1])):
+                units[-1].append(child)
+            else:
+                units.append([child])
+        return units
+
+    def _worth(self, unit: list[Widget]) -> tuple[int, int]:
+        """How long ``unit`` is kept: by the rank of its action, then the earlier first."""
+        action = _action(unit[0])
+        worth = len(self._rank) - self._rank[action] if action in self._rank else 0
+        return worth, -self.children.index(unit[0])
+
+
+def _width(widget: Widget) -> int:
+    """The cells ``widget`` takes in a row, with its margins."""
+    return widget.region.width + widget.styles.margin.width
+
+
+def _action(widget: Widget) -> str:
+    """The name of the action of a footer's key, or of a group's first key; else ''."""
+    if isinstance(widget, KeyGroup):  # (its keys may not be mounted yet)
+        widget = next(iter(widget.query(FooterKey)), None)
+    return widget.action.split("(", 1)[0] if isinstance(widget, FooterKey) else ""
