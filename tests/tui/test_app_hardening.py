@@ -17,7 +17,7 @@ from textual.widgets import Input, Label
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.tui.app import BicepsApp, rescued
 from biceps.tui.screens.choice import Choice
-from biceps.tui.screens.help import HelpScreen
+from biceps.tui.screens.help import HelpLog, HelpScreen
 from biceps.tui.screens.main import MainScreen
 from biceps.tui.screens.once import Palette
 from biceps.tui.screens.prompt import LONGEST, Prompt
@@ -153,9 +153,10 @@ async def test_help_closed_before_it_is_written_is_not_written(biceps):
     async with biceps() as session:
         help = HelpScreen()
         await session.app.push_screen(help)
+        log = help.query_one(HelpLog)
         help.dismiss()
         await session.pilot.pause()
-        help._write()  # as the refresh it waited for comes after it has gone
+        log._write()  # as a call made on its resize comes after it has gone
         assert session.app.failure is None
 
 

@@ -22,33 +22,41 @@ from biceps.tui.screens.once import Dialog
 HELP = files("biceps.tui").joinpath("help.md").read_text(encoding="utf-8")
 
 
+class HelpLog(RichLog):
+    """help.md, wrapped to the log's room beside its scrollbar: written when the log first
+    has a width and again when the width changes (a resized terminal). Not before: under a
+    storm of keys the screen may be mounted long before it is laid out, or never be (closed
+    at once, or covered by another dialog)."""
+
+    _written_width = 0
+
+    def on_resize(self) -> None:
+        # Called after this class's handler, RichLog's learns the size; write after both.
+        self.call_later(self._write)
+
+    def _write(self) -> None:
+        width = self.scrollable_content_region.width
+        if not width or width == self._written_width:
+            return
+        self._written_width = width
+        # Headings in the theme's accent, as Textual's own Markdown has them, rather than
+        # Rich's magenta: a terminal's magenta may be the muscle's red.
+        # Read by Textual: the ANSI theme's colours (ansi_green) are not Rich's names.
+        theme = self.app.current_theme
+        heading = Style(bold=True, color=Color.parse(theme.accent or theme.primary).rich_color)
+        headings = Theme({f"markdown.h{level}": heading for level in (1, 2, 3)})
+        self.clear()
+        with self.app.console.use_theme(headings):
+            # The width given: RichLog would widen the text to its min_width, 78, and cut
+            # it off in a terminal of 80 columns.
+            self.write(Markdown(HELP), width=width)
+
+
 class HelpScreen(Dialog[None]):
     BINDINGS = [Binding("escape,q,f1,question_mark", "dismiss", "Close help")]
 
     def compose(self) -> ComposeResult:
-        log = RichLog(id="help", auto_scroll=False, wrap=True)
+        log = HelpLog(id="help", auto_scroll=False, wrap=True)
         log.border_title = "biceps: keys and mouse"
         log.border_subtitle = "escape to close"
         yield log
-
-    def on_mount(self) -> None:
-        self.call_after_refresh(self._write)  # once laid out: as wide as the log
-
-    def _write(self) -> None:
-        # Headings in the theme's accent, as Textual's own Markdown has them, rather than
-        # Rich's magenta: a terminal's magenta may be the muscle's red.
-        # Read by Textual: the ANSI theme's colours (ansi_green) are not Rich's names.
-        accent = Color.parse(self.app.current_theme.accent or self.app.current_theme.primary)
-        heading = Style(bold=True, color=accent.rich_color)
-        headings = Theme({f"markdown.h{level}": heading for level in (1, 2, 3)})
-        logs = self.query(RichLog)
-        if not logs:
-            return  # closed again before it was laid out (? then escape at once)
-        log = logs.first()
-        if not log.scrollable_content_region.width:  # not laid out yet: a busy app, a storm
-            self.call_after_refresh(self._write)
-            return
-        with self.app.console.use_theme(headings):
-            # As wide as the log's room beside its scrollbar, which RichLog would widen to
-            # its min_width, 78, and cut off in a terminal of 80 columns.
-            log.write(Markdown(HELP), width=log.scrollable_content_region.width)
