@@ -280,27 +280,28 @@ def storm(terminal: Terminal, seconds: float, seed: int, sent: collections.Count
         time.sleep(rng.choice([0.0, 0.0, 0.01, 0.05, 0.1]))
 
 
-def quit_app(terminal: Terminal, size: tuple[int, int], attempts: int = 4) -> float | None:
+def quit_app(terminal: Terminal, size: tuple[int, int], attempts: int = 8) -> float | None:
     """End the app as a person does: back to a window of its size, escape out of whatever is
-    open, q, and "n" (don't save) if it asks; again if it is still running. The seconds it
-    took, or None if it did not end."""
+    open, q, and "n" (don't save) if it asks; again if nothing comes of it (input the app
+    was too far behind to answer is left out: tui/behind.py). The seconds it took, or None
+    if it did not end."""
     start = time.monotonic()
     terminal.resize(*size)
     for _ in range(attempts):
-        for _ in range(5):
+        for _ in range(3):
             terminal.type(ESC)
             time.sleep(0.3)
-        time.sleep(1.0)
         mark = terminal.mark()
         terminal.type(b"q")
         answered = False
-        deadline = time.monotonic() + 20.0
+        deadline = time.monotonic() + 8.0
         while time.monotonic() < deadline:
             if not terminal.running():
                 return time.monotonic() - start
-            if not answered and "nsaved edits" in terminal.shown(mark):  # its title, or text
+            if not answered and "nsaved edits" in terminal.shown(mark):  # title, or text
                 terminal.type(b"n")
                 answered = True
+                deadline = time.monotonic() + 20.0  # for it to end
             time.sleep(0.2)
     return None
 

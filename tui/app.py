@@ -44,6 +44,7 @@ from biceps.engine.scene import Scene, SceneRenderer, supersampling
 from biceps.tui import detect
 from biceps.tui.choose import TEXT, choose, colours, notice
 from biceps.tui.ahead import compile_ahead, lean_once_ready
+from biceps.tui.behind import Backlog
 from biceps.tui.changes import (
     COARSE_STEP,
     FINE_STEP,
@@ -83,6 +84,8 @@ from biceps.tui.widgets.viewport import Viewport
 
 # A drag across the picture's full height turns the model half round, or moves it by about
 # the height of the arm in view at scale 1.
+# What the terminal sends that tui/behind.py may leave out when the app falls behind.
+FROM_THE_TERMINAL = (events.InputEvent, events.Paste, events.AppFocus, events.AppBlur)
 DRAG_TURN = 180.0  # degrees per picture height
 DRAG_MOVE = 70.0  # cm per picture height
 
@@ -175,6 +178,8 @@ class BicepsApp(App[None]):
         self._encoder = encoder
         self._notice = notice
         self._history = History()
+        self._backlog = Backlog()
+        self._backlog_report_due = False
         self.failure: str | None = None  # the error this app ended on, if it did
         self._rescue = rescue
         self.config: Config | None = None
@@ -225,11 +230,33 @@ class BicepsApp(App[None]):
         super().panic(*renderables)
 
     async def on_event(self, event: events.Event) -> None:
-        # Keys and the mouse still queued as the app closes come after its screens have
-        # gone, and Textual, handing them to the screen in front, raised ScreenStackError.
-        if isinstance(event, (events.InputEvent, events.Paste)) and not self.screen_stack:
+        if isinstance(event, FROM_THE_TERMINAL) and not self._answers(event):
             return
         await super().on_event(event)
+
+    def _answers(self, event: events.Event) -> bool:
+        """Whether to answer this input from the terminal, or leave it out."""
+        # Keys and the mouse still queued as the app closes come after its screens have
+        # gone, and Textual, handing them to the screen in front, raised ScreenStackError.
+        if not self.screen_stack:
+            return False
+        # A button let go is always answered: a drag left out of it would go on.
+        focus = (isinstance(event, events.AppFocus)
+                 if isinstance(event, (events.AppFocus, events.AppBlur)) else None)
+        if isinstance(event, events.MouseUp) or self._backlog.answer(event.time, focus=focus):
+            return True
+        if not self._backlog_report_due:  # once the flood is over (tui/behind.py)
+            self._backlog_report_due = True
+            self.set_timer(self._backlog.patience, self._caught_up)
+        return False
+
+    def _caught_up(self) -> None:
+        self._backlog_report_due = False
+        focus, self._backlog.focus = self._backlog.focus, None
+        if focus is not None and focus != self.app_focus:
+            self.post_message(events.AppFocus() if focus else events.AppBlur())
+        if report := self._backlog.report():
+            self.notify(report, severity="warning", timeout=8, markup=False)
 
     def action_command_palette(self) -> None:
         # Textual's palettes, guarded against its faults (tui/screens/once.py). With no id

@@ -1,0 +1,56 @@
+"""Input the app is too far behind to answer is left out (tui/behind.py)."""
+
+from textual import events
+
+from biceps.tui.app import BicepsApp
+from biceps.tui.behind import Backlog
+from biceps.tui.screens.main import MainScreen
+from waiting import until
+
+
+def test_input_answered_while_the_app_keeps_up():
+    backlog = Backlog(patience=2.0)
+    assert all(backlog.answer(made, now=made + 1.9) for made in range(100))
+    assert backlog.report() is None
+
+
+def test_once_an_input_waited_too_long_all_queued_by_then_is_left_out():
+    backlog = Backlog(patience=2.0)
+    assert not backlog.answer(0.0, now=2.5)  # waited 2.5 s: the app is behind
+    assert not backlog.answer(1.0, now=2.6)  # queued before: left out, though only 1.6 s
+    assert not backlog.answer(2.5, now=2.7)  # queued by the time the app was found behind
+    assert backlog.answer(2.51, now=2.7)  # after: answered
+    assert backlog.report() == ("Input came faster than the app could answer: 3 keys, "
+                                "clicks and pastes queued over 2 s were left out.")
+    assert backlog.report() is None  # each counted once
+
+
+def test_of_the_focus_changes_left_out_the_latest_is_kept_and_not_counted():
+    backlog = Backlog(patience=2.0)
+    assert not backlog.answer(0.0, focus=False, now=3.0)
+    assert not backlog.answer(0.1, focus=True, now=3.0)
+    assert backlog.focus is True
+    assert backlog.report() is None
+
+
+async def test_a_flood_is_left_out_the_user_told_and_the_next_key_answered(config):
+    app = BicepsApp(config)
+    async with app.run_test(size=(100, 30), notifications=True) as pilot:
+        await until(pilot, lambda: isinstance(app.screen, MainScreen))
+        flood = []
+        for _ in range(2_000):  # what a flood leaves in the queue: old, and opening dialogs
+            for key in ("question_mark", "e", "ctrl+o", "c"):
+                event = events.Key(key, None)
+                event.time -= 60.0
+                flood.append(event)
+        focused = app.app_focus
+        change = events.AppBlur() if focused else events.AppFocus()
+        change.time -= 60.0
+        for event in (*flood, change):
+            app.post_message(event)
+        await until(pilot, lambda: any("8,000 keys" in str(note.message)
+                                       for note in app._notifications))
+        assert isinstance(app.screen, MainScreen)  # none of the flood's dialogs open
+        assert app.app_focus is not focused  # left out, but caught up with
+        await pilot.press("p")  # answered at once
+        assert app.screen.query_one("#plots").display
