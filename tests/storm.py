@@ -91,6 +91,9 @@ class Terminal(Protocol):
     def close(self) -> None: ...
 
 
+WRITE_PATIENCE = 30.0
+
+
 class RawTerminal(Terminal):
     """A pseudo-terminal the app has as its controlling terminal, as a shell gives its jobs
     (so that ctrl+c, ctrl+\\ and ctrl+z are signals while its mode says so), read all along,
@@ -110,6 +113,7 @@ class RawTerminal(Terminal):
         self.process = subprocess.Popen(command, stdin=slave, stdout=slave, stderr=slave,
                                         cwd=cwd, env=environment, preexec_fn=controlling)
         os.close(slave)
+        os.set_blocking(self.master, False)  # see type()
         self._output: collections.deque[bytes] = collections.deque(maxlen=4096)
         self._written = 0  # bytes read from the app, all along
         self._lock = threading.Lock()
@@ -142,10 +146,17 @@ class RawTerminal(Terminal):
             tail = seen[-16:]
 
     def type(self, data: bytes) -> None:
-        try:
-            os.write(self.master, data)
-        except OSError:  # gone
-            pass
+        # As a terminal does when the app stops reading: what it cannot take within
+        # WRITE_PATIENCE seconds is lost (a blocking write would wait for ever).
+        deadline = time.monotonic() + WRITE_PATIENCE
+        while data and (left := deadline - time.monotonic()) > 0:
+            try:
+                if select.select([], [self.master], [], left)[1]:
+                    data = data[os.write(self.master, data):]
+            except BlockingIOError:  # room for less than a write's worth: again
+                continue
+            except OSError:  # gone
+                return
 
     @staticmethod
     def _size(fd: int, columns: int, rows: int) -> None:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import asyncio
 import gc
 import os
+import shutil
 import sys
 from dataclasses import replace
 from functools import partial
@@ -232,7 +233,17 @@ class BicepsApp(App[None]):
     async def on_event(self, event: events.Event) -> None:
         if isinstance(event, FROM_THE_TERMINAL) and not self._answers(event):
             return
+        if isinstance(event, events.Resize) and self._outdated(event):
+            return
         await super().on_event(event)
+
+    def _outdated(self, resize: events.Resize) -> bool:
+        """Whether the terminal has been resized again since ``resize``: then another
+        resize is on its way, and laying the screens out for this one is wasted (a window
+        dragged by its corner sends dozens a second, each a layout of every screen)."""
+        if self.is_headless or self.is_web:  # sized by their driver, not by a terminal
+            return False
+        return tuple(resize.size) != tuple(shutil.get_terminal_size())
 
     def _answers(self, event: events.Event) -> bool:
         """Whether to answer this input from the terminal, or leave it out."""

@@ -1,6 +1,10 @@
 """Input the app is too far behind to answer is left out (tui/behind.py)."""
 
+import os
+import shutil
+
 from textual import events
+from textual.geometry import Size
 
 from biceps.tui.app import BicepsApp
 from biceps.tui.behind import Backlog
@@ -54,3 +58,24 @@ async def test_a_flood_is_left_out_the_user_told_and_the_next_key_answered(confi
         assert app.app_focus is not focused  # left out, but caught up with
         await pilot.press("p")  # answered at once
         assert app.screen.query_one("#plots").display
+
+
+async def test_a_resize_the_terminal_has_since_left_is_not_laid_out(config, monkeypatch):
+    # A window dragged by its corner sends dozens of resizes a second, and a storm of
+    # them left minutes of layouts queued: only the terminal's size now is laid out.
+    app = BicepsApp(config)
+    async with app.run_test(size=(100, 30)) as pilot:
+        monkeypatch.setattr(BicepsApp, "is_headless", property(lambda app: False))
+        monkeypatch.setattr(shutil, "get_terminal_size",
+                            lambda *fallback: os.terminal_size((120, 40)))
+        for width in range(60, 120):
+            app.post_message(events.Resize(Size(width, 30), Size(width, 30)))
+        app.post_message(events.Resize(Size(120, 40), Size(120, 40)))
+        await until(pilot, lambda: app.size == (120, 40))
+        seen = set()
+        monkeypatch.setattr(MainScreen, "on_resize",
+                            lambda screen, event: seen.add(tuple(event.size)))
+        app.post_message(events.Resize(Size(80, 24), Size(80, 24)))  # gone by now
+        app.post_message(events.Resize(Size(120, 40), Size(120, 40)))
+        await until(pilot, lambda: seen)
+        assert seen == {(120, 40)} and app.size == (120, 40)
