@@ -83,10 +83,10 @@ from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.recorder import Recorder, Recording
 from biceps.tui.widgets.viewport import Viewport
 
-# A drag across the picture's full height turns the model half round, or moves it by about
-# the height of the arm in view at scale 1.
 # What the terminal sends that tui/behind.py may leave out when the app falls behind.
 FROM_THE_TERMINAL = (events.InputEvent, events.Paste, events.AppFocus, events.AppBlur)
+# A drag across the picture's full height turns the model half round, or moves it by about
+# the height of the arm in view at scale 1.
 DRAG_TURN = 180.0  # degrees per picture height
 DRAG_MOVE = 70.0  # cm per picture height
 

@@ -14,9 +14,8 @@ from __future__ import annotations
 
 from time import monotonic
 
-# Long enough that no person's type-ahead is lost behind anything the UI thread does
-# (the app answers a key within a tenth of a second; the longest pause, a file opened,
-# within a second); short enough that the app is soon itself again.
+# Many times the app's answer to a key (a tenth of a second), so that a person's type-ahead
+# is kept; short enough that after a flood the app is soon itself again.
 PATIENCE = 2.0
 
 
