@@ -251,6 +251,8 @@ class BicepsApp(App[None]):
         # gone, and Textual, handing them to the screen in front, raised ScreenStackError.
         if not self.screen_stack:
             return False
+        if self.is_headless:  # keys from a script, which waits for each to be answered
+            return True
         # A button let go is always answered: a drag left out of it would go on.
         focus = (isinstance(event, events.AppFocus)
                  if isinstance(event, (events.AppFocus, events.AppBlur)) else None)

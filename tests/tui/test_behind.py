@@ -37,10 +37,12 @@ def test_of_the_focus_changes_left_out_the_latest_is_kept_and_not_counted():
     assert backlog.report() is None
 
 
-async def test_a_flood_is_left_out_the_user_told_and_the_next_key_answered(config):
+async def test_a_flood_is_left_out_the_user_told_and_the_next_key_answered(config,
+                                                                          monkeypatch):
     app = BicepsApp(config)
     async with app.run_test(size=(100, 30), notifications=True) as pilot:
         await until(pilot, lambda: isinstance(app.screen, MainScreen))
+        monkeypatch.setattr(BicepsApp, "is_headless", property(lambda app: False))
         flood = []
         for _ in range(2_000):  # what a flood leaves in the queue: old, and opening dialogs
             for key in ("question_mark", "e", "ctrl+o", "c"):
