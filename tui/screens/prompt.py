@@ -114,8 +114,7 @@ class Prompt(Dialog[tuple[Any, ...] | None]):
         return str(self.query_one(".dialog-error", Label).content)
 
     def _say(self, error: str) -> None:
-        labels = self.query(".dialog-error").results(Label)
-        label = next(labels, None)
+        label = self.query_one_optional(".dialog-error", Label)
         if label is None:  # closed while its check ran: nobody to tell
             return
         # Content, not a str: the message may quote a file name such as [b]x.toml.
