@@ -18,6 +18,21 @@ import pytest
 
 UPPER_HALF = "▀".encode()
 DEVICE_ATTRIBUTES_QUERY = b"\x1b[c"
+DEVICE_ATTRIBUTES_ANSWER = b"\x1b[?62;22c"  # a VT220's
+
+
+def app_environment(**variables: str) -> dict[str, str]:
+    """The environment for the app in a terminal: this one, less Textual's settings, as an
+    xterm with truecolour sets it, and ``variables``."""
+    environment = {key: value for key, value in os.environ.items()
+                   if not key.startswith("TEXTUAL")}
+    environment.update({"TERM": "xterm-256color", "COLORTERM": "truecolor", **variables})
+    return environment
+
+
+def set_size(fd: int, columns: int, rows: int) -> None:
+    """Give the terminal of ``fd`` (either side) a size; the app is sent SIGWINCH."""
+    fcntl.ioctl(fd, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, 0, 0))
 
 
 @dataclass
@@ -31,14 +46,11 @@ def _terminal(command: list[str], cwd: Path, size: tuple[int, int],
               variables: dict[str, str]) -> Iterator[tuple[subprocess.Popen, int]]:
     """``command`` running in a new terminal of ``size`` (columns, rows), and the terminal's
     side (the pty's master) to read it and type to it; killed, if still running, after."""
-    columns, rows = size
     master, slave = os.openpty()
-    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, 0, 0))
-    environment = {key: value for key, value in os.environ.items()
-                   if not key.startswith("TEXTUAL")}
-    environment.update({"TERM": "xterm-256color", "COLORTERM": "truecolor", **variables})
+    set_size(slave, *size)
     process = subprocess.Popen(command, stdin=slave, stdout=slave, stderr=slave,
-                               env=environment, cwd=cwd, start_new_session=True)
+                               env=app_environment(**variables), cwd=cwd,
+                               start_new_session=True)
     os.close(slave)
     try:
         yield process, master
@@ -78,7 +90,8 @@ def _read_until_picture(master: int, output: bytearray, deadline: float) -> None
             output += os.read(master, 1 << 16)
             # The app asks what the terminal can show (tui/detect.py), in rounds that end
             # with the device attributes: a VT220's answer to each.
-            os.write(master, b"\x1b[?62;22c" * (output.count(DEVICE_ATTRIBUTES_QUERY) - asked))
+            os.write(master, DEVICE_ATTRIBUTES_ANSWER
+                     * (output.count(DEVICE_ATTRIBUTES_QUERY) - asked))
             quiet_since = None
         elif UPPER_HALF in output:
             # The picture has begun: the frame is whole once the output pauses.

@@ -18,7 +18,6 @@ import random
 import re
 import select
 import shutil
-import struct
 import subprocess
 import sys
 import termios
@@ -27,6 +26,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterator, Protocol
+
+from pty_app import DEVICE_ATTRIBUTES_ANSWER, DEVICE_ATTRIBUTES_QUERY, app_environment, set_size
 
 ESC = b"\x1b"
 # What a person does with this app, as the bytes a terminal sends for it; the signal keys.
@@ -101,17 +102,15 @@ class RawTerminal(Terminal):
 
     def __init__(self, command: list[str], cwd: Path, size: tuple[int, int]) -> None:
         self.master, slave = os.openpty()
-        self._size(slave, *size)
+        set_size(slave, *size)
 
         def controlling() -> None:
             os.setsid()
             fcntl.ioctl(0, termios.TIOCSCTTY, 0)
 
-        environment = {key: value for key, value in os.environ.items()
-                       if not key.startswith("TEXTUAL")}
-        environment.update(TERM="xterm-256color", COLORTERM="truecolor")
         self.process = subprocess.Popen(command, stdin=slave, stdout=slave, stderr=slave,
-                                        cwd=cwd, env=environment, preexec_fn=controlling)
+                                        cwd=cwd, env=app_environment(),
+                                        preexec_fn=controlling)
         os.close(slave)
         os.set_blocking(self.master, False)  # see type()
         self._output: collections.deque[bytes] = collections.deque(maxlen=4096)
@@ -138,7 +137,7 @@ class RawTerminal(Terminal):
                 self._output.append(chunk)
                 self._written += len(chunk)
             seen = tail + chunk
-            answers = b"\x1b[?62;22c" * seen.count(b"\x1b[c")
+            answers = DEVICE_ATTRIBUTES_ANSWER * seen.count(DEVICE_ATTRIBUTES_QUERY)
             answers += b"".join(b"\x1b[1;%sR" % column
                                 for column in re.findall(rb"\x1b\[1;(\d+)H\x1b\[6n", seen))
             if answers:
@@ -158,12 +157,8 @@ class RawTerminal(Terminal):
             except OSError:  # gone
                 return
 
-    @staticmethod
-    def _size(fd: int, columns: int, rows: int) -> None:
-        fcntl.ioctl(fd, termios.TIOCSWINSZ, struct.pack("HHHH", rows, columns, 0, 0))
-
     def resize(self, columns: int, rows: int) -> None:
-        self._size(self.master, columns, rows)  # the kernel sends SIGWINCH
+        set_size(self.master, columns, rows)
 
     def running(self) -> bool:
         return self.process.poll() is None

@@ -40,9 +40,13 @@ def test_of_the_focus_changes_left_out_the_latest_is_kept_and_not_counted():
 async def test_a_flood_is_left_out_the_user_told_and_the_next_key_answered(config,
                                                                           monkeypatch):
     app = BicepsApp(config)
-    async with app.run_test(size=(100, 30), notifications=True) as pilot:
+    async with app.run_test(size=(100, 30)) as pilot:
         await until(pilot, lambda: isinstance(app.screen, MainScreen))
         monkeypatch.setattr(BicepsApp, "is_headless", property(lambda app: False))
+        told = []
+        notify = app.notify
+        monkeypatch.setattr(app, "notify", lambda message, **options: (
+            told.append(message), notify(message, **options))[1])
         flood = []
         for _ in range(2_000):  # what a flood leaves in the queue: old, and opening dialogs
             for key in ("question_mark", "e", "ctrl+o", "c"):
@@ -54,8 +58,7 @@ async def test_a_flood_is_left_out_the_user_told_and_the_next_key_answered(confi
         change.time -= 60.0
         for event in (*flood, change):
             app.post_message(event)
-        await until(pilot, lambda: any("8,000 keys" in str(note.message)
-                                       for note in app._notifications))
+        await until(pilot, lambda: any("8,000 keys" in message for message in told))
         assert isinstance(app.screen, MainScreen)  # none of the flood's dialogs open
         assert app.app_focus is not focused  # left out, but caught up with
         await pilot.press("p")  # answered at once
