@@ -31,7 +31,8 @@ class HelpLog(RichLog):
     _written_width = 0
 
     def on_resize(self) -> None:
-        # Called after this class's handler, RichLog's learns the size; write after both.
+        # RichLog's own handler, which runs after this one, is where the log learns that it
+        # has a size: write once both have run.
         self.call_later(self._write)
 
     def _write(self) -> None:
