@@ -9,6 +9,7 @@ from __future__ import annotations
 import fcntl
 import os
 import select
+import signal
 import shutil
 import subprocess
 import sys
@@ -124,6 +125,9 @@ def test_ctrl_c_in_long_work_stops_it_cleanly(tmp_path, argv, busy):
     def in_the_terminal():  # its controlling terminal, as a shell's job has: ctrl+c is SIGINT
         os.setsid()
         fcntl.ioctl(0, termios.TIOCSCTTY, 0)
+        # As a shell starts a job in the foreground: a suite started in the background
+        # (`pytest &`) ignores SIGINT, and its children would inherit that.
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
 
     process = subprocess.Popen([*BICEPS, *argv], stdin=slave, stdout=slave, stderr=slave,
                                cwd=tmp_path, preexec_fn=in_the_terminal)
