@@ -194,7 +194,10 @@ class TmuxTerminal(Terminal):
         shell = " ".join(_quoted(part) for part in command)
         subprocess.run([*self._tmux, "-f", "/dev/null", "new-session", "-d", "-s", "storm",
                         "-x", str(size[0]), "-y", str(size[1]), "-c", str(cwd),
-                        f"{shell}; echo $? > {_quoted(str(self._status))}"], check=True,
+                        # The shell stays after the app so that what it printed last (an
+                        # error's traceback) can still be read from the window.
+                        f"{shell}; echo $? > {_quoted(str(self._status))}; sleep 600"],
+                       check=True,
                        env={**os.environ, "TERM": "xterm-256color"})
 
     def type(self, data: bytes) -> None:
@@ -226,7 +229,7 @@ class TmuxTerminal(Terminal):
         return 0
 
     def shown(self, since: int = 0) -> str:
-        return subprocess.run([*self._tmux, "capture-pane", "-p", "-t", "storm"],
+        return subprocess.run([*self._tmux, "capture-pane", "-p", "-S", "-200", "-t", "storm"],
                               capture_output=True, text=True).stdout
 
     def close(self) -> None:
@@ -329,13 +332,13 @@ def run_storm(harness: str, model: Path, folder: Path, seconds: float, seed: int
             return outcome
         storm(terminal, seconds, seed, outcome.sent)
         outcome.alive_after = terminal.running()
-        outcome.shown_at_the_end = terminal.shown()[-3000:]
         if outcome.alive_after:
             outcome.quit_seconds = quit_app(terminal, size)
         deadline = time.monotonic() + 10
         while terminal.exit_status() is None and time.monotonic() < deadline:
             time.sleep(0.2)
         outcome.exit_status = terminal.exit_status()
+        outcome.shown_at_the_end = terminal.shown()[-3000:]  # an error's last words, if any
     finally:
         terminal.close()
     outcome.model_untouched = copy.read_bytes() == before
