@@ -10,7 +10,6 @@ from __future__ import annotations
 import asyncio
 import gc
 import os
-import shutil
 import sys
 from dataclasses import replace
 from functools import partial
@@ -45,7 +44,7 @@ from biceps.engine.scene import Scene, SceneRenderer, supersampling
 from biceps.tui import detect
 from biceps.tui.choose import TEXT, choose, colours, notice
 from biceps.tui.ahead import compile_ahead, lean_once_ready
-from biceps.tui.behind import Backlog
+from biceps.tui.behind import Backlog, outdated
 from biceps.tui.changes import (
     COARSE_STEP,
     FINE_STEP,
@@ -233,17 +232,9 @@ class BicepsApp(App[None]):
     async def on_event(self, event: events.Event) -> None:
         if isinstance(event, FROM_THE_TERMINAL) and not self._answers(event):
             return
-        if isinstance(event, events.Resize) and self._outdated(event):
+        if isinstance(event, events.Resize) and outdated(self, event.size):
             return
         await super().on_event(event)
-
-    def _outdated(self, resize: events.Resize) -> bool:
-        """Whether the terminal has been resized again since ``resize``: then another
-        resize is on its way, and laying the screens out for this one is wasted (a window
-        dragged by its corner sends dozens a second, each a layout of every screen)."""
-        if self.is_headless or self.is_web:  # sized by their driver, not by a terminal
-            return False
-        return tuple(resize.size) != tuple(shutil.get_terminal_size())
 
     def _answers(self, event: events.Event) -> bool:
         """Whether to answer this input from the terminal, or leave it out."""

@@ -8,11 +8,16 @@ dialog costs a layout, and behind a minute of flood the queue held minutes of wo
 longer than :data:`PATIENCE`, everything queued by then is left out, as a terminal
 program flushes its type-ahead (curses' ``flushinp``): the queue drains at once, and the
 next key is answered as it comes. The count left out is reported once the flood ends.
+
+Resizes are not left out but skipped when the terminal has been resized again since
+(:func:`outdated`): another is on its way, and each costs a layout of every screen.
 """
 
 from __future__ import annotations
 
+import shutil
 from time import monotonic
+from typing import Protocol
 
 # Many times the app's answer to a key (a tenth of a second), so that a person's type-ahead
 # is kept; short enough that after a flood the app is soon itself again.
@@ -54,3 +59,20 @@ class Backlog:
         count, self.left_out = self.left_out, 0
         return (f"Input came faster than the app could answer: {count:,} keys, clicks and "
                 f"pastes queued over {self.patience:g} s were left out.")
+
+
+class Sized(Protocol):
+    """The app, as far as :func:`outdated` asks it."""
+
+    is_headless: bool
+    is_web: bool
+
+
+def outdated(app: Sized, size: tuple[int, int]) -> bool:
+    """Whether the terminal has been resized again since a resize to ``size`` (columns,
+    rows): then another resize is on its way, and laying out for this one is wasted (a
+    window dragged by its corner sends dozens a second, a storm hundreds, each a layout of
+    every screen)."""
+    if app.is_headless or app.is_web:  # sized by their driver, not by a terminal
+        return False
+    return tuple(size) != tuple(shutil.get_terminal_size())

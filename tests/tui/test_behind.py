@@ -5,9 +5,12 @@ import shutil
 
 from textual import events
 from textual.geometry import Size
+from textual.message import Message
+from textual.screen import Screen
 
 from biceps.tui.app import BicepsApp
 from biceps.tui.behind import Backlog
+from biceps.tui.screens.help import HelpScreen
 from biceps.tui.screens.main import MainScreen
 from waiting import until
 
@@ -84,3 +87,31 @@ async def test_a_resize_the_terminal_has_since_left_is_not_laid_out(config, monk
         app.post_message(events.Resize(Size(120, 40), Size(120, 40)))
         await until(pilot, lambda: seen)
         assert seen == {(120, 40)} and app.size == (120, 40)
+
+
+class Between(Message):
+    """A message that nothing handles."""
+
+
+async def test_a_screen_skips_a_resize_the_terminal_has_since_left(config, monkeypatch):
+    # The app hands each resize it lays out to every screen on its stack, and each queues
+    # it behind its own messages: behind a storm, a dialog and the main screen under it held
+    # hundreds of layouts each. A screen lays out only the terminal's size now.
+    app = BicepsApp(config)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("question_mark")
+        await until(pilot, lambda: isinstance(app.screen, HelpScreen))
+        monkeypatch.setattr(BicepsApp, "is_headless", property(lambda app: False))
+        monkeypatch.setattr(shutil, "get_terminal_size",
+                            lambda *fallback: os.terminal_size((100, 30)))
+        seen = []
+        monkeypatch.setattr(Screen, "_on_resize", lambda screen, event: seen.append(
+            (type(screen).__name__, tuple(event.size))))
+        for screen in app.screen_stack:
+            for width in range(60, 100):
+                screen.post_message(events.Resize(Size(width, 30), Size(width, 30)))
+                screen.post_message(Between())  # else a resize replaces the one before
+            screen.post_message(events.Resize(Size(100, 30), Size(100, 30)))
+        await until(pilot, lambda: len(seen) >= 2)
+        await pilot.pause()
+        assert sorted(seen) == [("HelpScreen", (100, 30)), ("MainScreen", (100, 30))]

@@ -12,7 +12,6 @@ from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
 from textual.content import Content
 from textual.events import Resize, ScreenSuspend
-from textual.screen import Screen
 from textual.widget import Widget
 from textual.widgets import Static
 
@@ -21,6 +20,7 @@ from biceps.engine.scene import Scene
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.pacing import Pacer
 from biceps.tui.pixels import ImageEncoder
+from biceps.tui.screens.sized import LatestSize
 from biceps.tui.widgets.footer import FittedFooter
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import Plots
@@ -44,7 +44,7 @@ FOOTER_KEPT_LONGEST = (
 help and quitting always, the node table's while it has the focus."""
 
 
-class MainScreen(Screen[None]):
+class MainScreen(LatestSize[None]):
     AUTO_FOCUS = "#viewport"
     BINDINGS = [Binding("h", "toggle_panel", "Hide or show the side panel", show=False)]
 

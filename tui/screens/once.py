@@ -26,15 +26,18 @@ from textual.command import CommandList, CommandPalette
 from textual.css.query import NoMatches
 from textual.errors import NoWidget
 from textual.events import Click
-from textual.screen import ModalScreen, Screen
+from textual.screen import ModalScreen
 from textual.widgets import Input, OptionList
+
+from biceps.tui.screens.sized import LatestSize
 
 
 Result = TypeVar("Result")
 
 
-class DismissedOnce(Screen[Result]):
-    """A screen whose :meth:`dismiss` acts once, and only while it is in front."""
+class DismissedOnce(LatestSize[Result]):
+    """A screen whose :meth:`dismiss` acts once, and only while it is in front (and that
+    lays itself out only for the terminal's latest size)."""
 
     _dismissed = False
 
