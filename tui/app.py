@@ -234,7 +234,16 @@ class BicepsApp(App[None]):
             return
         if isinstance(event, events.Resize) and outdated(self, event.size):
             return
+        if isinstance(event, events.MouseDown) and self._on_a_widget_gone(event):
+            return
         await super().on_event(event)
+
+    def _on_a_widget_gone(self, press: events.MouseDown) -> bool:
+        """Whether ``press`` lands on a widget already removed, whose place the screen has
+        not laid out again (a note cleared as the terminal shrank): Textual's text selection
+        looked up that widget's parent, None, and ended the app with AttributeError."""
+        widget, _ = self.screen.get_widget_and_offset_at(press.x, press.y)
+        return widget is not None and not widget.is_attached
 
     def _answers(self, event: events.Event) -> bool:
         """Whether to answer this input from the terminal, or leave it out."""

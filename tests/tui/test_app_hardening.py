@@ -25,6 +25,7 @@ from biceps.tui.terminal_input import LenientParser, decode_leniently
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.recorder import Recorder
 from biceps.tui.widgets.stats import Stats
+from waiting import until
 
 
 @pytest.mark.parametrize("data, keys", [
@@ -125,6 +126,25 @@ async def test_a_click_on_the_palette_after_the_window_shrank_does_nothing(bicep
                                           screen_x=10, screen_y=10))
         await session.pilot.pause()
         assert app.screen is palette
+        assert app.failure is None
+
+
+async def test_a_press_on_a_note_just_removed_does_nothing(config):
+    # A note cleared (as the terminal shrinks, say) keeps its place on the screen until the
+    # next layout: a button pressed there in between reached Textual's text selection, which
+    # looked up the note's parent, None, and ended the app (seen in a storm of input).
+    app = BicepsApp(config)
+    async with app.run_test(size=(100, 30), notifications=True) as pilot:
+        app.notify("a note", timeout=30)
+        await until(pilot, lambda: app.screen.query("Toast"))
+        await pilot.pause()
+        note = app.screen.query_one("Toast")
+        x, y = note.region.offset
+        await note.remove()
+        app.post_message(events.MouseDown(None, x, y, 0, 0, 1, False, False, False,
+                                          screen_x=x, screen_y=y))
+        await pilot.pause()
+        await pilot.pause()
         assert app.failure is None
 
 
