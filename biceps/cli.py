@@ -344,9 +344,10 @@ def _keys_are_keys() -> None:
 
     While the app runs Textual turns those signals off, and the keys are keys: ctrl+z is
     undo, ctrl+\\ nothing. Typed a moment earlier, in a burst, they dumped core or stopped
-    the app half started. Textual puts its own SIGTSTP handler back when it starts (a
-    suspend it undoes on SIGCONT, for kill -TSTP). ctrl+c before the app is up still
-    ends it, quietly (exit status 130).
+    the app half started. Textual puts its own SIGTSTP handler in place as it starts, and
+    the app ignores the signal again once it is up (tui/app.py's ``on_ready``), so that
+    kill -TSTP does not stop it either. ctrl+c before the app is up still ends it,
+    quietly (exit status 130).
     """
     signal.signal(signal.SIGQUIT, signal.SIG_IGN)
     signal.signal(signal.SIGTSTP, signal.SIG_IGN)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import asyncio
 import gc
 import os
+import signal
 import sys
 from dataclasses import replace
 from functools import partial
@@ -284,6 +285,12 @@ class BicepsApp(App[None]):
         self.push_screen(Palette(providers=[ThemeProvider], placeholder="Search for themes…"))
 
     def on_ready(self) -> None:
+        if not self.is_headless and not self.is_web:
+            # Textual's driver stops the app on SIGTSTP, and leaves that in place after it
+            # gives the terminal back: a ctrl+z typed as the app closed (or failed, before
+            # its rescue) stopped it, with nothing to start it again. ctrl+z is undo here;
+            # the signal is ignored, as it is before the app starts (biceps/cli.py).
+            signal.signal(signal.SIGTSTP, signal.SIG_IGN)
         # Every frame makes thousands of short-lived segments, and every so often Python
         # then collects the oldest generation too, walking all of Textual's and numba's
         # objects, long enough to miss frames. Set apart what exists once the app is up

@@ -4,6 +4,7 @@ of its own that gets through."""
 
 from __future__ import annotations
 
+import os
 import shutil
 import signal
 import sys
@@ -98,6 +99,11 @@ def test_ctrl_backslash_and_ctrl_z_neither_end_nor_stop_the_app(config_path):
         time.sleep(1.0)
         assert terminal.running()
         assert _state(pid) != "T"  # not stopped
+        # Nor by the signal itself, which a ctrl+z raises once Textual has given the
+        # terminal back, as the app closes: Textual's own handler stopped it then.
+        os.kill(pid, signal.SIGTSTP)
+        time.sleep(1.0)
+        assert _state(pid) != "T"
         assert quit_app(terminal, (100, 30)) is not None
         assert terminal.exit_status() == 0
     finally:
