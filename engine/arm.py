@@ -62,6 +62,20 @@ class Arm:
         return self.muscle.length
 
     @property
+    def lengths(self) -> tuple[float, ...]:
+        """Every muscle's length (cm), in the order of :attr:`names`: each is its path's
+        length at the elbow's flexion (the driver's sets the flexion)."""
+        return tuple(muscle.length for muscle in self.muscles)
+
+    @property
+    def moment_arms(self) -> tuple[float, ...]:
+        """Every muscle's moment arm about the elbow (cm) at the elbow's flexion, in the
+        order of :attr:`names`: ``-dL/dtheta`` of its path, the length it loses per radian
+        of flexion, so positive for a flexor and negative for an extensor."""
+        flexion = self.flexion
+        return tuple(path.moment_arm_at(flexion) for path in self.paths)
+
+    @property
     def flexion(self) -> float:
         """Elbow flexion in degrees: 0 with the arm straight."""
         return self.skeleton.flexion(self.length)

@@ -1,5 +1,7 @@
 """A muscle's path over the elbow: straight from origin to insertion, or wrapped around a
-cylinder about the elbow's axis where the straight line would cut through the joint.
+cylinder about the elbow's axis where the straight line would cut through the joint; or,
+as OpenSim's models lead their muscles, through points fixed to the bones and round
+wrapping surfaces (`ViaPath`).
 
 The cylinder is OpenSim's wrapping cylinder (arm26's "TRI", radius 1.6 cm, about the
 elbow's axis): the triceps runs over the olecranon and, as the elbow bends, around the back
@@ -19,12 +21,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
 
 from biceps.engine.skeleton import Attachment, forearm_frame, place
-from biceps.engine.stations import shares
+from biceps.engine.stations import distances_along, shares
+from biceps.engine.wrapping import Surface, Wrapped
 
 WrapSide = Literal["front", "back"]
 SIDES: dict[str, int] = {"front": 1, "back": -1}
@@ -63,6 +67,18 @@ class MusclePath:
     def wraps(self, flexion: float) -> bool:
         """Whether the path bends round the cylinder at ``flexion`` degrees."""
         return self._wrapped(*self.ends(flexion)) is not None
+
+    def moment_arm_at(self, flexion: float) -> float:
+        """The moment arm about the elbow (cm) at ``flexion`` degrees: ``-dL/dtheta``, the
+        length lost per radian of flexion, positive for a flexor."""
+        start, end = self.ends(flexion)
+        wrapped = self._wrapped(start, end)
+        if wrapped is None:
+            return moment_arm_of(end, end - start)
+        planar, _, _, (touch, _, last) = wrapped
+        # The climb along z is shared in proportion to the planar lengths (a helix).
+        height = end[2] - (end[2] - start[2]) * last / planar
+        return moment_arm_of(end, end - np.array([touch[0], touch[1], height]))
 
     def centreline(self, flexion: float, count: int) -> tuple[np.ndarray, np.ndarray]:
         """``count`` points (count, 3) equally spaced along the path from origin to insertion,
@@ -125,3 +141,184 @@ class MusclePath:
         second = (touch_out, q, math.sqrt(b * b - radius * radius))
         arc = (into, -side * turn, radius * turn)
         return first[2] + arc[2] + second[2], first, arc, second
+
+
+def _turn(flexion: float) -> np.ndarray:
+    """(3, 3) the turn of the forearm about the hinge (z) from the straight arm to
+    ``flexion`` degrees."""
+    frame = forearm_frame(flexion)
+    return frame @ STRAIGHT_FOREARM.T
+
+
+STRAIGHT_FOREARM = forearm_frame(0.0)
+
+
+def moment_arm_of(point: np.ndarray, arriving: np.ndarray) -> float:
+    """The moment arm about the elbow (cm) of a path that ends at the forearm's ``point``
+    (3,), reaching it along ``arriving`` (3,): ``-dL/dtheta``, as the point turns about the
+    hinge (z) and the path's length changes by its motion along the path's last line (the
+    rest of a shortest path round fixed surfaces does not change its length to first
+    order: its tangent points slide along it)."""
+    return -float(np.cross(HINGE, point) @ arriving) / float(np.linalg.norm(arriving))
+
+
+HINGE = np.array([0.0, 0.0, 1.0])
+"""The elbow's axis in world space (see ``engine/skeleton.py``)."""
+
+
+@dataclass(frozen=True)
+class PathWrap:
+    """A wrapping surface fixed to the upper arm, which the path's segments between its
+    points ``first`` and ``last`` (indices, both included) may pass round."""
+
+    surface: Surface
+    first: int
+    last: int
+
+
+@dataclass(frozen=True, eq=False)
+class ViaPath:
+    """A path through ``points`` fixed to the bones (origin first, insertion last), each
+    straight segment between them passing round a wrapping surface where it would cut
+    through one, as OpenSim's ``GeometryPath`` leads a muscle.
+
+    The ``wrapping`` surfaces are tried in their order, each on the segments of its range
+    from the first: the first segment a surface's straight line passes through goes round
+    it (a segment goes round one surface at most). The segments between two upper-arm
+    points do not change with the elbow, so theirs are worked out once.
+    """
+
+    points: tuple[Attachment, ...]
+    wrapping: tuple[PathWrap, ...] = ()
+
+    @property
+    def origin(self) -> Attachment:
+        return self.points[0]
+
+    @property
+    def insertion(self) -> Attachment:
+        return self.points[-1]
+
+    def places(self, flexion: float) -> np.ndarray:
+        """(k, 3) every point of the path in world space at ``flexion`` degrees."""
+        places = self._straight.copy()
+        places[self._moving] = self._straight[self._moving] @ _turn(flexion).T
+        return places
+
+    @cached_property
+    def _straight(self) -> np.ndarray:
+        """(k, 3) every point in world space with the arm straight."""
+        return np.array([point.in_frame() for point in self.points])
+
+    @cached_property
+    def _moving(self) -> np.ndarray:
+        """(k,) bool: the points on the forearm, which turn with the elbow."""
+        return np.array([point.bone == "forearm" for point in self.points])
+
+    def ends(self, flexion: float) -> tuple[np.ndarray, np.ndarray]:
+        """The origin and the insertion (3,) float64 in world space at ``flexion`` degrees."""
+        places = self.places(flexion)
+        return places[0], places[-1]
+
+    def segments(self, flexion: float) -> tuple[np.ndarray, list[Wrapped | None]]:
+        """The points (k, 3) at ``flexion`` degrees and, for each of the k - 1 segments
+        between them, its way round a surface, or None where it is straight."""
+        places = self.places(flexion)
+        moving = self._moving
+        ways: list[Wrapped | None] = [None] * (len(places) - 1)
+        for index, wrap in enumerate(self.wrapping):
+            for segment in range(wrap.first, wrap.last):
+                if ways[segment] is not None:
+                    continue
+                if moving[segment] or moving[segment + 1]:
+                    way = wrap.surface.wrap(places[segment], places[segment + 1])
+                else:
+                    way = self._fixed_way(index, segment, places)
+                if way is not None:
+                    ways[segment] = way
+                    break
+        return places, ways
+
+    def _fixed_way(self, wrap: int, segment: int, places: np.ndarray) -> Wrapped | None:
+        key = (wrap, segment)
+        if key not in self._fixed:
+            surface = self.wrapping[wrap].surface
+            self._fixed[key] = surface.wrap(places[segment], places[segment + 1])
+        return self._fixed[key]
+
+    @cached_property
+    def _fixed(self) -> dict:
+        """The ways round surfaces of the segments that do not move with the elbow, by
+        (wrap, segment), filled as they are first asked for."""
+        return {}
+
+    def length_at(self, flexion: float) -> float:
+        """The path's length (cm) with the elbow at ``flexion`` degrees."""
+        places, ways = self.segments(flexion)
+        straight = np.linalg.norm(np.diff(places, axis=0), axis=1)
+        return float(sum(length if way is None else way.total(places[i], places[i + 1])
+                         for i, (length, way) in enumerate(zip(straight.tolist(), ways))))
+
+    def wraps(self, flexion: float) -> bool:
+        """Whether any segment goes round a surface at ``flexion`` degrees."""
+        return any(way is not None for way in self.segments(flexion)[1])
+
+    def moment_arm_at(self, flexion: float) -> float:
+        """The moment arm about the elbow (cm) at ``flexion`` degrees: ``-dL/dtheta``, the
+        length lost per radian of flexion, positive for a flexor. Each forearm point moves
+        with the hinge and lengthens the path by its motion along the line arriving at it,
+        shortens it by that along the line leaving it."""
+        route = self.route(flexion)
+        arms = 0.0
+        for point, place, at in zip(self.points, route.places, route.at):
+            if point.bone != "forearm":
+                continue
+            for neighbour in (at - 1, at + 1):  # the lines arriving and leaving
+                if 0 <= neighbour < len(route.points):
+                    arms += moment_arm_of(place, place - route.points[neighbour])
+        return arms
+
+    def route(self, flexion: float) -> Route:
+        """The path at ``flexion`` degrees as one line of points through every point of the
+        path and round every surface it wraps."""
+        places, ways = self.segments(flexion)
+        points, at = [places[:1]], [0]
+        for index, way in enumerate(ways):
+            if way is not None:
+                points.append(way.points)
+            points.append(places[index + 1:index + 2])
+            at.append(at[-1] + 1 + (0 if way is None else len(way.points)))
+        return Route(places, np.concatenate(points), np.array(at))
+
+    def centreline(self, flexion: float, count: int) -> tuple[np.ndarray, np.ndarray]:
+        """``count`` points (count, 3) equally spaced along the path from origin to insertion,
+        and the path's unit direction (count, 3) at each, at ``flexion`` degrees (on a
+        surface, the direction of the line between the route's points it lies between)."""
+        return along_line(self.route(flexion).points, count)
+
+
+@dataclass(frozen=True)
+class Route:
+    """A path at one pose: its own points (k, 3), the line (m, 3) through them and round
+    the surfaces it wraps, and where each of its own points is on that line (k,)."""
+
+    places: np.ndarray
+    points: np.ndarray
+    at: np.ndarray
+
+
+def along_line(points: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """``count`` points (count, 3) equally spaced along the line through ``points`` (m, 3),
+    both ends included, and the line's unit direction (count, 3) at each."""
+    along = distances_along(points)
+    steps = np.diff(points, axis=0)
+    lengths = np.diff(along)
+    keep = lengths > 0.0
+    steps, starts, lengths = steps[keep], along[:-1][keep], lengths[keep]
+    wanted = shares(count) * along[-1]
+    segment = np.clip(np.searchsorted(starts, wanted, side="right") - 1, 0, len(starts) - 1)
+    share = (wanted - starts[segment]) / lengths[segment]
+    kept = points[:-1][keep]
+    placed = kept[segment] + share[:, None] * steps[segment]
+    placed[-1] = points[-1]
+    return placed, steps[segment] / lengths[segment, None]

@@ -18,11 +18,12 @@ from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import VOLUME_MODES
 from solids import exported, solid
 
-# arm26's six muscles at every 10 degrees: benchmarks/arm26_reference.py --write made it.
+# arm26's six muscles at every 5 degrees: benchmarks/arm26_reference.py --write made it.
 REFERENCE = json.loads((Path(__file__).parent / "data" / "arm26_elbow.json").read_text())
 FLEXORS = ("BIClong", "BICshort", "BRA")
 EXTENSORS = ("TRIlong", "TRIlat", "TRImed")
-FLEXIONS = REFERENCE["flexion_deg"]
+FLEXIONS = REFERENCE["flexion_deg"][::2]  # every 10 degrees
+LENGTHS = {name: lengths[::2] for name, lengths in REFERENCE["length_mm"].items()}
 SEGMENTS = 24
 
 
@@ -76,7 +77,7 @@ def test_both_volume_modes_are_tried_by_the_property():
 @pytest.mark.parametrize("name", FLEXORS + EXTENSORS)
 def test_each_muscles_length_change_follows_arm26_within_5_mm(elbow, name):
     # configs/elbow.toml names its muscles as arm26 does.
-    theirs = np.array(REFERENCE["length_mm"][name])
+    theirs = np.array(LENGTHS[name])
     index = elbow.names.index(name)
     ours = np.array([10.0 * elbow.at_flexion(f).muscles[index].length for f in FLEXIONS])
     assert np.max(np.abs((ours - ours[0]) - (theirs - theirs[0]))) <= 5.0
@@ -246,3 +247,15 @@ def test_an_edit_that_leaves_a_companion_unable_to_follow_the_elbow_is_refused(e
     with pytest.raises(RefusedChange, match="TRIlong would have to stretch"):
         elbow.with_muscle_at(index, thin)
     assert elbow.muscles[index] is triceps
+
+
+def test_every_muscles_length_and_moment_arm_are_its_paths(elbow):
+    arm = elbow.at_flexion(70.0)
+    assert arm.lengths == tuple(muscle.length for muscle in arm.muscles)
+    for path, length, moment_arm in zip(arm.paths, arm.lengths, arm.moment_arms):
+        assert length == pytest.approx(path.length_at(70.0), rel=1e-12)
+        assert moment_arm == pytest.approx(path.moment_arm_at(70.0), rel=1e-12)
+    assert arm.moment_arms[0] == pytest.approx(arm.moment_arm, rel=1e-12)
+    flexors = [arm.names.index(name) for name in FLEXORS]
+    assert all(arm.moment_arms[i] > 0 for i in flexors)
+    assert all(arm.moment_arms[arm.names.index(name)] < 0 for name in EXTENSORS)

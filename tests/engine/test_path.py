@@ -64,3 +64,20 @@ def test_the_centreline_runs_evenly_from_origin_to_insertion_round_the_cylinder(
     reach = np.hypot(points[:, 0], points[:, 1])
     assert reach.min() == pytest.approx(2.0, rel=1e-9)
     assert np.all(reach >= 2.0 - 1e-9)
+
+
+@pytest.mark.parametrize("wrap", [None, Wrap(2.0, "front")])
+def test_the_moment_arm_is_the_length_lost_per_radian_straight_or_wrapped(wrap):
+    path = MusclePath(ORIGIN, Attachment("forearm", 4.0, 0.5, 1.0), wrap)
+    for flexion in (0.0, 20.0, 60.0, 110.0):
+        change = path.length_at(flexion + 1e-4) - path.length_at(flexion - 1e-4)
+        assert path.moment_arm_at(flexion) == pytest.approx(-change / math.radians(2e-4),
+                                                           abs=1e-6)
+
+
+def test_a_straight_paths_moment_arm_is_the_skeletons():
+    skeleton = Skeleton()
+    path = MusclePath(skeleton.origin, skeleton.insertion)
+    for flexion in range(0, 131, 10):
+        assert path.moment_arm_at(flexion) == pytest.approx(skeleton.moment_arm(flexion),
+                                                            rel=1e-12)

@@ -1,0 +1,184 @@
+"""OpenSim's arm26 model, as much of it as the elbow's six muscles need: their path points,
+the wrapping surfaces they pass, and the elbow's hinge, moved into this program's frames.
+
+arm26 is the upper extremity of Holzbaur, Murray and Delp (2005, "A model of the upper
+extremity for simulating musculoskeletal surgery and analyzing neuromuscular control",
+Annals of Biomedical Engineering 33, 829-840), adapted by the OpenSim Development Team
+(``Models/Arm26/arm26.osim`` of opensim-models), and licensed under Creative Commons
+Attribution 3.0. The numbers below are that file's, in its units (metres, radians) and
+frames, so each can be checked against it; `path` moves them into world space.
+
+arm26's frames: the humerus's origin is the humeral head's centre, its x forward, y up, z
+to the outside; the scapula ("base") holds the shoulder joint at ``SHOULDER`` and, with the
+shoulder at its rest angle (as every pose here has it), does not turn against the humerus;
+the forearm ("r_ulna_radius_hand") turns about ``ELBOW_AXIS`` through ``ELBOW``, by the
+flexion in radians. World space (``engine/skeleton.py``) puts the elbow's centre at the
+origin and its hinge on z, so the hinge is arm26's axis exactly: world x and y are turned
+about it so that the humeral head lies straight up (+y), with the head 2.26 cm to the
+outside of the elbow's centre (arm26's hinge is 85.5 degrees, not 90, to the humerus).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from biceps.engine.path import PathWrap, ViaPath
+from biceps.engine.skeleton import Attachment
+from biceps.engine.wrapping import Cylinder, Ellipsoid, Surface
+
+SHOULDER = (-0.017545, -0.007, 0.17)
+"""The shoulder joint in the scapula's frame ("base"): its points less this are the humerus's."""
+ELBOW = (0.0061, -0.2904, -0.0123)
+"""The elbow's centre in the humerus's frame (r_elbow's parent offset)."""
+ELBOW_AXIS = (0.04940001, 0.03660001, 0.99810825)
+"""The hinge's direction in the humerus's frame, the same in the forearm's at any flexion."""
+
+MUSCLES = ("BIClong", "BICshort", "BRA", "TRIlong", "TRIlat", "TRImed")
+
+POINTS: dict[str, tuple[tuple[str, tuple[float, float, float]], ...]] = {
+    "TRIlong": (("base", (-0.05365, -0.01373, 0.14723)),
+                ("r_humerus", (-0.02714, -0.11441, -0.00664)),
+                ("r_humerus", (-0.03184, -0.22637, -0.01217)),
+                ("r_humerus", (-0.01743, -0.26757, -0.01208)),
+                ("r_ulna_radius_hand", (-0.0219, 0.01046, -0.00078))),
+    "TRIlat": (("r_humerus", (-0.00599, -0.12646, 0.00428)),
+               ("r_humerus", (-0.02344, -0.14528, 0.00928)),
+               ("r_humerus", (-0.03184, -0.22637, -0.01217)),
+               ("r_humerus", (-0.01743, -0.26757, -0.01208)),
+               ("r_ulna_radius_hand", (-0.0219, 0.01046, -0.00078))),
+    "TRImed": (("r_humerus", (-0.00838, -0.13695, -0.00906)),
+               ("r_humerus", (-0.02601, -0.15139, -0.0108)),
+               ("r_humerus", (-0.03184, -0.22637, -0.01217)),
+               ("r_humerus", (-0.01743, -0.26757, -0.01208)),
+               ("r_ulna_radius_hand", (-0.0219, 0.01046, -0.00078))),
+    "BIClong": (("base", (-0.039235, 0.00347, 0.14795)),
+                ("base", (-0.028945, 0.01391, 0.15639)),
+                ("r_humerus", (0.02131, 0.01793, 0.01028)),
+                ("r_humerus", (0.02378, -0.00511, 0.01201)),
+                ("r_humerus", (0.01345, -0.02827, 0.00136)),
+                ("r_humerus", (0.01068, -0.07736, -0.00165)),
+                ("r_humerus", (0.01703, -0.12125, 0.00024)),
+                ("r_humerus", (0.0228, -0.1754, -0.0063)),
+                ("r_ulna_radius_hand", (0.00751, -0.04839, 0.02179))),
+    "BICshort": (("base", (0.004675, -0.01231, 0.13475)),
+                 ("base", (-0.007075, -0.04004, 0.14507)),
+                 ("r_humerus", (0.01117, -0.07576, -0.01101)),
+                 ("r_humerus", (0.01703, -0.12125, -0.01079)),
+                 ("r_humerus", (0.0228, -0.1754, -0.0063)),
+                 ("r_ulna_radius_hand", (0.00751, -0.04839, 0.02179))),
+    "BRA": (("r_humerus", (0.0068, -0.1739, -0.0036)),
+            ("r_ulna_radius_hand", (-0.0032, -0.0239, 0.0009))),
+}
+"""Each muscle's path points, origin to insertion: the body each is fixed to, and where."""
+
+# Each wrap object: its kind, body, xyz_body_rotation, translation, quadrant and size (a
+# cylinder's radius and length, an ellipsoid's three semi-axes).
+SURFACES = {
+    "TRIlongglen": ("cylinder", "base", (1.37532, -0.294612, 2.43596),
+                    (-0.043905, -0.0039, 0.1478), "x", (0.003, 0.03)),
+    "TRI": ("cylinder", "r_humerus", (-0.14015, -0.00628319, 0.154985),
+            (0.0028, -0.2919, -0.0069), "all", (0.016, 0.05)),
+    "TRIlonghh": ("ellipsoid", "r_humerus", (3.00162, -0.853466, 2.57419),
+                  (-0.0078, -0.0041, -0.0014), "z", (0.035, 0.02, 0.02)),
+    "BIClonghh": ("ellipsoid", "r_humerus", (-2.00434, -1.00164, 0.975465),
+                  (0.0033, 0.0073, 0.0003), "-y", (0.025, 0.02, 0.02)),
+}
+
+WRAPS: dict[str, tuple[tuple[str, tuple[int, int] | None], ...]] = {
+    "TRIlong": (("TRI", None), ("TRIlonghh", None), ("TRIlongglen", None)),
+    "TRIlat": (("TRI", None),),
+    "TRImed": (("TRI", None),),
+    "BIClong": (("BIClonghh", (2, 3)),),
+    "BICshort": (),
+    "BRA": (("TRI", None),),
+}
+"""Each muscle's wraps, in order: the surface and the range of its path points (1-based,
+both ends included, as arm26's ``range``; None for ``-1 -1``, the whole path)."""
+
+BONES: dict[str, tuple[str, str]] = {
+    "BIClong": ("scapula", "radius"),  # the supraglenoid tubercle; the radial tuberosity
+    "BICshort": ("scapula", "radius"),  # the coracoid process's tip
+    "BRA": ("humerus", "ulna"),  # the front of the humerus's lower half; the coronoid
+    "TRIlong": ("scapula", "ulna"),  # the infraglenoid tubercle; the olecranon
+    "TRIlat": ("humerus", "ulna"),  # the back of the humerus above the radial groove
+    "TRImed": ("humerus", "ulna"),  # and below it
+}
+"""The bones each muscle's origin and insertion hold on to, by their anatomical names."""
+
+
+def _axes() -> np.ndarray:
+    """(3, 3): world x, y, z as rows, in the humerus's frame (see the module's docstring)."""
+    z = np.array(ELBOW_AXIS) / np.linalg.norm(ELBOW_AXIS)
+    up = -np.array(ELBOW)  # from the elbow's centre to the head's
+    y = up - (up @ z) * z
+    y /= np.linalg.norm(y)
+    return np.stack([np.cross(y, z), y, z])
+
+
+WORLD = _axes()
+"""Rows x, y, z of world space in the humerus's frame: a point ``p`` (m) of the humerus is
+``100 WORLD (p - ELBOW)`` cm in world space."""
+
+
+def world_point(body: str, location) -> np.ndarray:
+    """(3,) cm: a point of arm26's ``body`` at ``location`` (m) in world space, the forearm
+    held straight (0 degrees of flexion)."""
+    location = np.asarray(location, dtype=np.float64)
+    if body == "r_ulna_radius_hand":
+        return 100.0 * WORLD @ location
+    if body == "base":
+        location = location - SHOULDER
+    return 100.0 * WORLD @ (location - ELBOW)
+
+
+def attachment(body: str, location) -> Attachment:
+    """The point of arm26's ``body`` at ``location`` (m) as an attachment (see
+    `Attachment.in_frame`): on the forearm if it is fixed to the forearm, else on the upper
+    arm (the scapula does not move against the humerus here)."""
+    x, y, z = world_point(body, location)
+    if body == "r_ulna_radius_hand":
+        return Attachment("forearm", -y, x, z)
+    return Attachment("upper_arm", y, x, z)
+
+
+def _rotation(angles) -> np.ndarray:
+    """(3, 3) Simbody's body-fixed x-y-z rotation by ``angles`` (radians): Rx Ry Rz."""
+    (cx, cy, cz), (sx, sy, sz) = np.cos(angles), np.sin(angles)
+    about_x = np.array([[1.0, 0.0, 0.0], [0.0, cx, -sx], [0.0, sx, cx]])
+    about_y = np.array([[cy, 0.0, sy], [0.0, 1.0, 0.0], [-sy, 0.0, cy]])
+    about_z = np.array([[cz, -sz, 0.0], [sz, cz, 0.0], [0.0, 0.0, 1.0]])
+    return about_x @ about_y @ about_z
+
+
+def _quadrant(name: str) -> tuple[int, int] | None:
+    if name == "all":
+        return None
+    return "xyz".index(name[-1]), -1 if name.startswith("-") else 1
+
+
+@lru_cache(maxsize=None)
+def surface(name: str) -> Surface:
+    """arm26's wrap object ``name`` in world space (cm)."""
+    kind, body, angles, translation, quadrant, size = SURFACES[name]
+    placed = dict(centre=world_point(body, translation),
+                  rotation=WORLD @ _rotation(angles), quadrant=_quadrant(quadrant))
+    if kind == "cylinder":
+        return Cylinder(radius=100.0 * size[0], length=100.0 * size[1], **placed)
+    return Ellipsoid(radii=100.0 * np.array(size), **placed)
+
+
+@lru_cache(maxsize=None)
+def path(name: str) -> ViaPath:
+    """arm26's path of the muscle ``name`` (one of :data:`MUSCLES`), world space, cm."""
+    points = tuple(attachment(body, location) for body, location in POINTS[name])
+    wraps = []
+    for surface_name, span in WRAPS[name]:
+        first, last = (span[0] - 1, span[1] - 1) if span else (0, len(points) - 1)
+        wraps.append(PathWrap(surface(surface_name), first, last))
+    return ViaPath(points, tuple(wraps))
+
+
+HEAD = world_point("r_humerus", (0.0, 0.0, 0.0))
+"""(3,) cm: the humeral head's centre (arm26's humerus origin) in world space."""
