@@ -484,15 +484,23 @@ def describe(arm: Arm) -> dict[str, Any]:
         "nodes": muscle.node_count,
         "radii_cm": muscle.radii.tolist(),
         "growth": muscle.growth.tolist(),
-        "muscles": [_muscle_facts(name, each) for name, each in zip(arm.names, arm.muscles)],
+        "muscles": [_muscle_facts(name, each, path, moment_arm, arm.flexion)
+                    for name, each, path, moment_arm
+                    in zip(arm.names, arm.muscles, arm.paths, arm.moment_arms)],
     }
 
 
-def _muscle_facts(name: str, muscle: Any) -> dict[str, Any]:
-    """One muscle's facts, for ``info``'s list of every muscle (the driver first)."""
+def _muscle_facts(name: str, muscle: Any, path: Any, moment_arm: float,
+                  flexion: float) -> dict[str, Any]:
+    """One muscle's facts, for ``info``'s list of every muscle (the driver first): its
+    length and moment arm (its path's), its widest section's area (the node law's, pi r^2
+    at its largest radius) and the points its path runs through at ``flexion``."""
     return {
         "name": name,
         "length_cm": muscle.length,
+        "moment_arm_cm": moment_arm,
+        "widest_section_cm2": math.pi * muscle.max_radius**2,
+        "path_points_cm": path.points_at(flexion).tolist(),
         "rest_length_cm": muscle.reference_length,
         "volume_mode": muscle.volume_mode,
         "volume_cm3": muscle.volume,

@@ -8,15 +8,19 @@ tendon's colour, which blends into the belly's over the nodes that grow a little
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from biceps.engine.bones import bone_meshes, bone_spheres
+from biceps.engine.layers import Ground, Humerus, Lie, lay
+from biceps.engine.layers import muscle_mesh as layered_mesh
+from biceps.engine.layers import tendon_shares as layered_tendons
 from biceps.engine.mesh import Mesh, bent_muscle_mesh, muscle_mesh
 from biceps.engine.muscle import Muscle
 from biceps.engine.packing import arm_leans, centreline, laid_offsets, laying_order
-from biceps.engine.path import MusclePath
+from biceps.engine.path import MusclePath, ViaPath
 from biceps.engine.stations import section_radii
 
 if TYPE_CHECKING:
@@ -35,9 +39,62 @@ def arm_parts(arm: Arm, segments: int, hidden: frozenset[str] = frozenset(),
 
     The muscles are laid on the bones one at a time, deepest first: the companions in their
     order, then the driver over them; each keeps clear of the bones and of those laid
-    before it (hidden or not, so hiding one moves no other), and one laid over others
-    turns to its own side of them, round the humerus (`arm_leans`).
+    before it (hidden or not, so hiding one moves no other). On arm26's skeleton each lies
+    in layers round the humerus (``engine/layers.py``); on the simple one, one laid over
+    others turns to its own side of them, round the humerus (`arm_leans`).
     """
+    return parts_and_tendons(arm, segments, hidden, companion_segments)[0]
+
+
+def parts_and_tendons(arm: Arm, segments: int, hidden: frozenset[str] = frozenset(),
+                      companion_segments: int | None = None
+                      ) -> tuple[dict[str, Mesh], dict[str, np.ndarray]]:
+    """`arm_parts`, and how much each vertex of each muscle's part is tendon (n,) float32,
+    by name (see `tendon_share`)."""
+    if arm.skeleton.model == "arm26":
+        return _layered_parts(arm, segments, hidden, companion_segments)
+    parts = _simple_parts(arm, segments, hidden, companion_segments)
+    flexion = arm.flexion
+    tendons = {name: tendon_share(muscle, path, flexion, parts[name])
+               for name, muscle, path in zip(arm.names, arm.muscles, arm.paths)
+               if name not in hidden}
+    return parts, tendons
+
+
+def _layered_parts(arm: Arm, segments: int, hidden: frozenset[str],
+                   companion_segments: int | None):
+    from biceps.engine.arm26 import BONES, LIES  # arm26's paths build on this package
+
+    pose, skeleton = arm.pose, arm.skeleton
+    ground = Ground(Humerus(skeleton.shoulder), *bone_spheres(skeleton, pose))
+    names, muscles, paths = arm.names, arm.muscles, arm.paths
+    parts, tendons = {}, {}
+    for index in laying_order(arm):
+        name, muscle, path = names[index], muscles[index], paths[index]
+        around = segments if index == 0 or companion_segments is None else companion_segments
+        route = path.route(pose.flexion).points if isinstance(path, ViaPath) else \
+            path.centreline(pose.flexion, 64)[0]
+        lie = LIES.get(name) or _lie_of(route, ground.humerus)
+        held = BONES.get(name, ("humerus", "humerus"))
+        laid = lay(name, muscle, route, lie, ground, around,
+                   (held[0] != "humerus", held[1] != "humerus"))
+        if name not in hidden:
+            parts[name] = layered_mesh(laid, muscle.volume_mode == "closed")
+            tendons[name] = layered_tendons(laid, muscle, around)
+    parts = {name: parts[name] for name in names if name in parts}
+    return {**parts, **bone_meshes(skeleton, pose, segments)}, tendons
+
+
+def _lie_of(route: np.ndarray, humerus: Humerus) -> Lie:
+    """How a muscle with no lie of its own lies: on the side of the humerus its path runs
+    down, round its middle."""
+    heights, _, angles = humerus.polar(route)
+    side = math.degrees(float(np.angle(np.mean(np.exp(1j * angles)))))
+    return Lie(side=(side, side))
+
+
+def _simple_parts(arm: Arm, segments: int, hidden: frozenset[str],
+                  companion_segments: int | None) -> dict[str, Mesh]:
     pose, skeleton = arm.pose, arm.skeleton
     spheres = bone_spheres(skeleton, pose)
     names, muscles, paths = arm.names, arm.muscles, arm.paths  # properties: built per read

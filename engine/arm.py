@@ -1,9 +1,11 @@
 """The arm: the muscle on its skeleton, changing length within what both allow, and the
 other muscles of the elbow, which follow it.
 
-The muscle (the driver, the biceps) sets the elbow's angle by its length; its companions
-(``engine/companion.py``) take the length their paths have at that angle. A single-muscle
-arm is the case with no companions.
+The muscle (the driver, the biceps) sets the elbow's angle by its length: straight between
+the skeleton's attachments, by the law of cosines (:class:`Skeleton`); on a path of its own
+(``driver_path``, arm26's), as the flexion at which that path has its length
+(:class:`PathDrive`). Its companions (``engine/companion.py``) take the length their paths
+have at that angle. A single-muscle arm is the case with no companions.
 """
 
 from __future__ import annotations
@@ -16,8 +18,8 @@ from biceps.engine.bounds import cm
 from biceps.engine.companion import Companion, check_reach
 from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import Muscle
-from biceps.engine.path import MusclePath
-from biceps.engine.skeleton import ArmPose, Skeleton
+from biceps.engine.path import MusclePath, PathDrive, ViaPath
+from biceps.engine.skeleton import ArmPose, Skeleton, forearm_frame
 
 HINGE_AXIS = np.array([0.0, 0.0, 1.0])
 """The elbow's axis in world space: flexion turns the forearm about ``+z``, from ``-y``
@@ -39,6 +41,15 @@ class Arm:
     max_length: float | None = None
     name: str = "muscle"
     companions: tuple[Companion, ...] = ()
+    driver_path: ViaPath | None = None
+
+    @property
+    def drive(self) -> Skeleton | PathDrive:
+        """How the driver's length sets the elbow: the skeleton's law of cosines, or the
+        flexion at which its own path has that length."""
+        if self.driver_path is None:
+            return self.skeleton
+        return PathDrive(self.driver_path, self.skeleton.min_flexion, self.skeleton.max_flexion)
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -52,9 +63,9 @@ class Arm:
 
     @property
     def paths(self) -> tuple[MusclePath, ...]:
-        """Every muscle's path, the driver's (straight, between the skeleton's attachments)
-        first."""
-        driver = MusclePath(self.skeleton.origin, self.skeleton.insertion)
+        """Every muscle's path, the driver's (its own, or straight between the skeleton's
+        attachments) first."""
+        driver = self.driver_path or MusclePath(self.skeleton.origin, self.skeleton.insertion)
         return (driver, *(companion.path for companion in self.companions))
 
     @property
@@ -78,11 +89,17 @@ class Arm:
     @property
     def flexion(self) -> float:
         """Elbow flexion in degrees: 0 with the arm straight."""
-        return self.skeleton.flexion(self.length)
+        return self.drive.flexion(self.length)
 
     @property
     def pose(self) -> ArmPose:
-        return self.skeleton.pose(self.length)
+        if self.driver_path is None:
+            return self.skeleton.pose(self.length)
+        flexion = self.flexion
+        frame = forearm_frame(flexion)
+        origin, insertion = self.driver_path.ends(flexion)
+        return ArmPose(flexion, self.skeleton.shoulder, origin, np.zeros(3), insertion,
+                       self.skeleton.forearm * frame[:, 0], frame)
 
     @property
     def moment_arm(self) -> float:
@@ -93,8 +110,11 @@ class Arm:
         centre to that line. For a straight muscle this equals ``-dL/dtheta``, the length
         lost per radian of flexion (the tendon-excursion method; An et al. 1984), which is
         what OpenSim reports for a muscle with no wrapping. Worked out from the pose's
-        points, so it follows wherever the skeleton puts the attachments.
+        points, so it follows wherever the skeleton puts the attachments. On a path of its
+        own, ``-dL/dtheta`` of that path.
         """
+        if self.driver_path is not None:
+            return self.driver_path.moment_arm_at(self.flexion)
         pose = self.pose
         line = pose.origin - pose.insertion
         pull = line / np.linalg.norm(line)
@@ -108,7 +128,7 @@ class Arm:
 
     def _set_range(self) -> tuple[float, float]:
         """The joint's range and the config's limits, without the muscle's own."""
-        low, high = self.skeleton.length_range()
+        low, high = self.drive.length_range()
         if self.min_length is not None:
             low = max(low, self.min_length)
         if self.max_length is not None:
@@ -123,12 +143,12 @@ class Arm:
                 f"length {cm(length)} cm is outside what this arm allows: "
                 f"{low:.2f} to {high:.2f} cm (elbow flexion "
                 # round(), an int: the straight arm's -1e-14 degrees is 0, not "-0"
-                f"{round(self.skeleton.flexion(high))} to {round(self.skeleton.flexion(low))} "
+                f"{round(self.drive.flexion(high))} to {round(self.drive.flexion(low))} "
                 "degrees)"
                 + self._muscle_limit_note(high)
             )
         muscle = self.muscle.at_length(length)
-        flexion = self.skeleton.flexion(length)
+        flexion = self.drive.flexion(length)
         return replace(self, muscle=muscle, companions=tuple(
             companion.at_flexion(flexion) for companion in self.companions))
 
@@ -139,7 +159,7 @@ class Arm:
             raise RefusedChange(
                 f"flexion {flexion:g} degrees is outside the joint's range, {low:g} to {high:g}"
             )
-        return self.at_length(self.skeleton.length_at(flexion))
+        return self.at_length(self.drive.length_at(flexion))
 
     def stepped(self, change: float) -> tuple[Arm, str | None]:
         """The muscle lengthened by ``change`` cm (shortened if negative), stopping at a limit.
@@ -159,7 +179,7 @@ class Arm:
         return self.at_length(length), None
 
     def _limit_note(self, length: float, which: str) -> str:
-        flexion = self.skeleton.flexion(length)
+        flexion = self.drive.flexion(length)
         if which == "longest" and length < self._set_range()[1]:
             return (
                 f"the muscle is at its longest, {length:.2f} cm: stretched further, "

@@ -24,6 +24,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from biceps.engine.layers import Lie
 from biceps.engine.path import PathWrap, ViaPath
 from biceps.engine.skeleton import Attachment
 from biceps.engine.wrapping import Cylinder, Ellipsoid, Surface
@@ -106,6 +107,26 @@ BONES: dict[str, tuple[str, str]] = {
     "TRImed": ("humerus", "ulna"),  # and below it
 }
 """The bones each muscle's origin and insertion hold on to, by their anatomical names."""
+
+
+LIES: dict[str, Lie] = {
+    # The brachialis broad and flat on the front of the humerus's lower half.
+    "BRA": Lie(side=(0.0, 0.0), aspect=4.0, spread=100.0, lowest=-5.0),
+    # The biceps over it: the short head from inside the front, the long head beside it
+    # from outside; from 20 cm above the elbow down they make one belly, split in front.
+    "BICshort": Lie(side=(-40.0, 0.0), aspect=1.5, spread=45.0, wall=1, merge_below=20.0,
+                    lane=-0.3),
+    # The triceps' medial head deep on the back of the humerus, the lateral head over its
+    # outer side, the long head over its inner side.
+    "TRImed": Lie(side=(180.0, 180.0), aspect=3.0, spread=90.0),
+    "TRIlat": Lie(side=(125.0, 150.0), aspect=1.8, spread=50.0, lane=0.85),
+    "TRIlong": Lie(side=(-145.0, -160.0), aspect=3.0, spread=55.0, beside="TRIlat",
+                   lane=-0.85),
+    "BIClong": Lie(side=(40.0, 15.0), aspect=1.5, spread=45.0, beside="BICshort", wall=-1,
+                   merge_below=20.0, lane=0.3),
+}
+"""Where each of the six lies round the humerus (``engine/layers.py``), as anatomy atlases
+draw a mid-arm section: the biceps and brachialis in front, the triceps behind."""
 
 
 def _axes() -> np.ndarray:

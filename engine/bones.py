@@ -116,6 +116,8 @@ def _along(start, end, knots, ends) -> Part:
 def bone_parts(skeleton: Skeleton) -> dict[str, tuple[bool, tuple[Part, ...]]]:
     """Each bone's parts, by name ("scapula", "humerus", "radius", "ulna"), in its frame, and
     whether it turns with the forearm. Cached: the bones change only with the skeleton."""
+    if skeleton.model == "arm26":
+        return _arm26_bones()
     up = skeleton.upper_arm / ARM26_UPPER_ARM  # each side's scale
     fore = skeleton.forearm / ARM26_FOREARM
     return {"scapula": (False, _scapula(skeleton, up)), "humerus": (False, _humerus(skeleton, up)),
@@ -188,6 +190,156 @@ def _ulna(skeleton: Skeleton, up: float, fore: float) -> tuple[Part, ...]:
                 [0.35, 0.78 * fore], [0.7, 0.6 * fore], [0.95, 0.55 * fore],
                 [1.0, 0.75 * fore]], (0.8 * up, 0.6 * fore)),
     )
+
+
+def _arm26_bones() -> dict[str, tuple[bool, tuple[Part, ...]]]:
+    """arm26's bones: built round its landmarks (``engine/arm26.py``, world space, the
+    forearm's as the straight arm holds them), each muscle's origin and insertion on a knob
+    of the bone arm26 names for it, ending exactly at the attachment."""
+    from biceps.engine import arm26  # whose paths build on this package's skeleton
+
+    parts = {"scapula": list(_arm26_scapula()), "humerus": list(_arm26_humerus()),
+             "radius": list(_arm26_radius()), "ulna": list(_arm26_ulna())}
+    axes = {"scapula": None, "humerus": (np.zeros(3), arm26.HEAD),
+            "radius": (RADIUS_TOP, RADIUS_END), "ulna": (ULNA_TOP, ULNA_END)}
+    for name in arm26.MUSCLES:
+        path = arm26.path(name)
+        for bone, point in zip(arm26.BONES[name], (path.origin, path.insertion)):
+            if bone == "scapula":
+                continue  # its tubercles and the coracoid are built to their tendons
+            tip = point.in_frame()
+            start, end = axes[bone]
+            base = _nearest_on(start, end, tip)
+            if not _inside(parts[bone], tip):
+                parts[bone].append(_knob(base, tip, 0.45))
+    return {name: (name in ("radius", "ulna"), tuple(bone)) for name, bone in parts.items()}
+
+
+ARM26_HEAD_RADIUS = 2.2
+"""cm: the humeral head, as far inside arm26's wrapping ellipsoid (BIClonghh, 2.5 by 2 by 2
+cm) as BIClong's tendon needs over it (its path stays 2.67 cm from the head's centre)."""
+RADIUS_TOP = np.array([0.0, -1.15, 1.55])  # the radial head, under the capitulum
+RADIUS_END = np.array([-0.6, -23.0, 6.8])  # beside arm26's radial styloid (-1.1, -23.9, 8.5)
+ULNA_TOP = np.array([-1.63, 0.83, -0.15])  # under the olecranon's tip (arm26's TRI*-P5)
+ULNA_END = np.array([-0.9, -23.0, 3.0])  # the ulna's head, inside the radius's at the wrist
+
+
+def _arm26_humerus() -> tuple[Part, ...]:
+    from biceps.engine.arm26 import HEAD
+
+    up = HEAD / np.linalg.norm(HEAD)
+    return (
+        # The shaft, from inside the condyles to inside the head (arm26's humerus leans
+        # 4.5 degrees out from square to its hinge).
+        Part(np.zeros(3), up, profile(
+            np.array([[0.6, 1.35], [1.6, 1.4], [3.0, 1.22], [5.5, 1.0], [9.0, 0.9],
+                      [15.0, 0.86], [21.0, 0.95], [24.5, 1.2], [26.5, 1.55], [27.6, 1.8]]),
+            (1.0, 1.0))),
+        Part(HEAD, up, _sphere_profile(ARM26_HEAD_RADIUS)),
+        # The greater tubercle outside and the lesser in front, either side of the groove
+        # that BIClong's tendon runs down (arm26's BIClong-P3 and P4).
+        _rod(HEAD + [0.5, -0.6, 1.6], HEAD + [0.6, -2.0, 1.7], 1.1),
+        _rod(HEAD + [1.0, -1.0, -0.4], HEAD + [0.9, -1.8, -0.4], 0.7),
+        # The condyles, a spool along the hinge: the medial epicondyle, the trochlea under
+        # the ulna, the capitulum under the radius, the lateral epicondyle (arm26's marker
+        # r_humerus_epicondyle is 4.2 cm outside the hinge's centre). Its axis is that of
+        # arm26's wrapping cylinder "TRI", 4 mm behind the hinge, so that the tendons
+        # wrapped round that (1.6 cm) pass clear of it.
+        Part(np.array([-0.36, -0.16, -3.0]), np.array([0.0, 0.0, 1.0]), profile(
+            np.array([[0.0, 0.55], [0.5, 0.85], [1.0, 1.1], [1.9, 0.95], [2.8, 1.1],
+                      [3.3, 0.95], [3.6, 1.05], [4.8, 1.05], [5.6, 0.8], [6.8, 0.55]]),
+            (0.4, 0.4))),
+    )
+
+
+def _arm26_scapula() -> tuple[Part, ...]:
+    from biceps.engine.arm26 import HEAD, POINTS, world_point
+
+    supraglenoid = world_point(*POINTS["BIClong"][0])
+    infraglenoid = world_point(*POINTS["TRIlong"][0])
+    coracoid = world_point(*POINTS["BICshort"][0])
+    acromion = world_point("base", (-0.01256, 0.04, 0.17))  # arm26's marker r_acromion
+    # The glenoid faces the head between its two tubercles, a hair off the head's surface.
+    middle = 0.5 * (supraglenoid + infraglenoid)
+    facing = (HEAD - middle) / np.linalg.norm(HEAD - middle)
+    glenoid = HEAD - (ARM26_HEAD_RADIUS + 0.1) * facing
+    neck = glenoid - 2.5 * facing
+    blade = neck + np.array([-2.5, -2.0, -2.5])  # the body, behind and inside the chest wall
+    spine = neck + np.array([-1.5, 3.0, -1.0])  # the spine's root, behind and above the neck
+    return (
+        # The glenoid's shallow face against the head, and the neck behind it.
+        _along(glenoid, neck, [[0.0, 1.3], [0.15, 1.4], [0.55, 1.0], [1.0, 1.3]], (0.15, 0.9)),
+        # The blade, a flat disc turned to lie against the ribs.
+        Part(blade, np.array([0.7, 0.0, -0.7]) / np.sqrt(0.98),
+             profile([[0.0, 4.0], [0.5, 4.0]], (0.25, 0.25))),
+        _rod(neck, blade, 1.1),
+        # The supraglenoid and infraglenoid tubercles, under the biceps' and the triceps'
+        # long heads.
+        _knob(neck + 0.6 * (supraglenoid - neck), supraglenoid, 0.45),
+        _knob(neck + 0.5 * (infraglenoid - neck), infraglenoid, 0.5),
+        # The coracoid: up from the neck, then hooked forward to its tip, under the short
+        # head.
+        _rod(neck, neck + np.array([0.6, 1.6, 0.2]), 0.7),
+        _knob(neck + np.array([0.6, 1.6, 0.2]), coracoid, 0.55),
+        # The spine and a short acromion, arching over the head to arm26's marker.
+        _rod(neck, spine, 0.8),
+        _knob(spine, acromion, 0.8),
+    )
+
+
+def _arm26_radius() -> tuple[Part, ...]:
+    from biceps.engine.arm26 import POINTS, world_point
+
+    return (_along(RADIUS_TOP, RADIUS_END,
+                   [[0.0, 1.05], [0.04, 1.05], [0.07, 0.7], [0.15, 0.62], [0.45, 0.68],
+                    [0.75, 0.82], [0.92, 1.05], [1.0, 1.35]], (0.2, 0.4)),
+            # The radial tuberosity, as wide across as the biceps' two tendons side by side.
+            _ridge(world_point(*POINTS["BIClong"][-1]), RADIUS_TOP, RADIUS_END, 0.5, 0.55))
+
+
+def _ridge(point: np.ndarray, start: np.ndarray, end: np.ndarray, radius: float,
+           reach: float) -> Part:
+    """A rod of ``radius`` along the hinge (z) whose surface passes through ``point`` (3,)
+    on its side towards the bone's axis (from ``start`` to ``end``), ``reach`` cm either
+    side of it: a bone's edge that tendons end on side by side."""
+    inward = _nearest_on(start, end, point) - point
+    inward[2] = 0.0
+    centre = point + radius * inward / np.linalg.norm(inward)
+    across = np.array([0.0, 0.0, reach])
+    return _rod(centre - across, centre + across, radius)
+
+
+def _arm26_ulna() -> tuple[Part, ...]:
+    from biceps.engine.arm26 import POINTS, world_point
+
+    coronoid = world_point(*POINTS["BRA"][-1])
+    return (
+        # From the olecranon's tip down to the ulna's head; the trochlear notch leaves the
+        # trochlea room.
+        _along(ULNA_TOP, ULNA_END,
+               [[0.0, 0.6], [0.05, 0.75], [0.12, 0.7], [0.2, 0.75], [0.35, 0.7], [0.7, 0.55],
+                [0.95, 0.5], [1.0, 0.75]], (0.6, 0.6)),
+        # The coronoid process, forward under the trochlea, where the brachialis ends.
+        _knob(ULNA_TOP + 0.15 * (ULNA_END - ULNA_TOP), coronoid, 0.5),
+        # The olecranon, as wide across as the triceps' three tendons side by side.
+        _ridge(world_point(*POINTS["TRIlat"][-1]), np.zeros(3), ULNA_TOP, 0.55, 1.2),
+    )
+
+
+def _nearest_on(start: np.ndarray, end: np.ndarray, point: np.ndarray) -> np.ndarray:
+    """(3,) the point of the segment from ``start`` to ``end`` nearest ``point``."""
+    along = end - start
+    share = np.clip((point - start) @ along / (along @ along), 0.0, 1.0)
+    return start + share * along
+
+
+def _inside(parts, point: np.ndarray) -> bool:
+    """Whether ``point`` (3,) lies inside any of the ``parts`` (by their spheres)."""
+    for part in parts:
+        centres, radii = part.spheres()
+        if np.any(np.linalg.norm(centres - point, axis=1) < radii):
+            return True
+    return False
 
 
 def _sphere_profile(radius: float, bands: int = 16) -> np.ndarray:

@@ -209,10 +209,13 @@ def prepare_framing() -> None:
 def prepare_around_the_rasterizer(shading: str, ssaa: int = 1) -> None:
     """Compile, or load from the cache, what a frame in ``shading`` with ``ssaa``
     supersampling runs before and after the rasterizer: the framing, the vertex stage,
-    the clearing and the downsampling."""
+    the clearing and the downsampling; and what lays arm26's muscles round the humerus
+    (``engine/layers.py``), which a pose of the elbow's needs before its first frame."""
+    from biceps.engine.layers import prepare as prepare_layers
     from biceps.engine.render import Renderer
 
     prepare_framing()
+    prepare_layers()
     Renderer().prepare(shading, ssaa, rasterizer=False)
 
 

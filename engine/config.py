@@ -16,7 +16,7 @@ import re
 import tomllib
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Annotated, Any, Callable, get_args, get_origin
+from typing import Annotated, Any, Callable, Literal, get_args, get_origin
 
 import numpy as np
 import tomlkit
@@ -57,8 +57,10 @@ from biceps.engine.settings import (
     Shading,
     View,
 )
-from biceps.engine.path import MusclePath, Wrap, WrapSide
-from biceps.engine.skeleton import Attachment, Skeleton, attachment_problem, skeleton_problem
+from biceps.engine import arm26
+from biceps.engine.path import MusclePath, PathDrive, ViaPath, Wrap, WrapSide
+from biceps.engine.skeleton import (Attachment, Skeleton, SkeletonModel, attachment_problem,
+                                    skeleton_problem)
 from biceps.engine.transforms import FRACTION, SHININESS, Light
 
 
@@ -136,10 +138,16 @@ class _ProfileTable(_Table):
         return "growth" if "growth" in problem else "radius"
 
 
+PathName = Literal["arm26"]
+"""A path a muscle may take from a model: ``"arm26"``, the path arm26 gives the muscle of
+its name (``engine/arm26.py``)."""
+
+
 class MuscleTable(_ProfileTable):
     """The driver: the muscle whose length sets the elbow's angle, and the pose shown."""
 
     name: MuscleName = "muscle"
+    path: PathName | None = None
     pose_length: Positive | None = None
     pose_flexion: Degrees | None = None
     min_length: Positive | None = None
@@ -161,21 +169,35 @@ class CompanionTable(_ProfileTable):
     the elbow's centre, as the [skeleton]'s attachments), whether it wraps round the elbow
     and on which side, and its colour."""
 
-    origin: Vector
-    insertion: Vector
+    path: PathName | None = None
+    origin: Vector | None = None
+    insertion: Vector | None = None
     wrap: WrapSide | None = None
     wrap_radius: Bone | None = None
     colour: Colour | None = None
 
     @model_validator(mode="after")
-    def _wrap_whole(self) -> CompanionTable:
+    def _one_path(self) -> CompanionTable:
+        attached = [key for key in ("origin", "insertion", "wrap", "wrap_radius")
+                    if getattr(self, key) is not None]
+        if self.path is not None and attached:
+            raise ValueError(
+                f"path = \"{self.path}\" gives the muscle its attachments and wraps: remove "
+                f"{' and '.join(attached)}")
+        if self.path is None and (self.origin is None or self.insertion is None):
+            missing = " and ".join(key for key in ("origin", "insertion")
+                                   if getattr(self, key) is None)
+            raise ValueError(f"{missing} missing: give origin and insertion ([along, "
+                             "forward, lateral] cm from the elbow's centre), or path = "
+                             "\"arm26\" for arm26's path of the muscle of this name")
         if (self.wrap is None) != (self.wrap_radius is None):
             raise ValueError(
                 "wrap and wrap_radius go together: the side of the elbow the muscle passes "
                 "(\"front\" or \"back\") and the wrapping cylinder's radius in cm")
         return self
 
-    def path(self) -> MusclePath:
+    def own_path(self) -> MusclePath:
+        """The path its origin, insertion and wrap give (when it takes no model's path)."""
         wrap = Wrap(self.wrap_radius, self.wrap) if self.wrap is not None else None
         return MusclePath(Attachment("upper_arm", *self.origin),
                           Attachment("forearm", *self.insertion), wrap)
@@ -194,11 +216,23 @@ class SkeletonTable(_Table):
     insertion_lateral: Coordinate = Skeleton.insertion_lateral
     forearm: Bone = Skeleton.forearm
     flexion_range: tuple[Degrees, Degrees] = (Skeleton.min_flexion, Skeleton.max_flexion)
+    model: SkeletonModel = Skeleton.model
+
+    @model_validator(mode="after")
+    def _arm26_whole(self) -> SkeletonTable:
+        sized = sorted(self.model_fields_set - {"model", "flexion_range"})
+        if self.model == "arm26" and sized:
+            raise ValueError(f"model = \"arm26\" brings arm26's own bones and attachments: "
+                             f"remove {', '.join(sized)} (flexion_range may stay)")
+        return self
 
     @classmethod
     def of(cls, skeleton: Skeleton) -> SkeletonTable:
         fields = asdict(skeleton)
-        return cls(flexion_range=(fields.pop("min_flexion"), fields.pop("max_flexion")), **fields)
+        flexion_range = (fields.pop("min_flexion"), fields.pop("max_flexion"))
+        if skeleton.model == "arm26":  # its bones are arm26's: the other fields do not apply
+            return cls(model="arm26", flexion_range=flexion_range)
+        return cls(flexion_range=flexion_range, **fields)
 
     def skeleton(self) -> Skeleton:
         fields = self.model_dump()
@@ -413,18 +447,21 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
     if problem is not None:
         field, reason = problem
         raise fail(("skeleton", field), reason)
-    length = _length_of(muscle_table.length, muscle_table.flexion, "flexion", skeleton, fail)
+    driver_path = _driver_path(muscle_table, skeleton, fail)
+    drive = skeleton if driver_path is None else PathDrive(
+        driver_path, skeleton.min_flexion, skeleton.max_flexion)
+    length = _length_of(muscle_table.length, muscle_table.flexion, "flexion", drive, skeleton,
+                        fail)
     radii, growth = muscle_table.profile()
     try:
         muscle = Muscle.of(radii, growth, length, muscle_table.volume)
     except RefusedChange as error:
         raise fail(("muscle", muscle_table.nodes_key(str(error))), str(error)) from None
-    companions = _companions(table, skeleton, fail)
+    companions = _companions(table, skeleton, driver_path, fail)
     # The companions follow the elbow from the start: each at its path's length there.
-    companions = tuple(companion.at_flexion(skeleton.flexion(length))
-                       for companion in companions)
+    companions = tuple(companion.at_flexion(drive.flexion(length)) for companion in companions)
     arm = Arm(muscle, skeleton, muscle_table.min_length, muscle_table.max_length,
-              muscle_table.name, companions)
+              muscle_table.name, companions, driver_path)
     low, high = arm.length_range()
     if low > high:
         raise fail(
@@ -434,7 +471,7 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
         )
     _check_reach(arm, length, "flexion" if muscle_table.flexion is not None else "length", fail)
     pose = _length_of(muscle_table.pose_length, muscle_table.pose_flexion, "pose_flexion",
-                      skeleton, fail)
+                      drive, skeleton, fail)
     if pose is None or pose == length:
         return arm
     pose = _check_reach(
@@ -444,18 +481,54 @@ def _build_arm(path: Path, source: str, table: ConfigFile) -> Arm:
     return arm.at_length(pose)
 
 
-def _companions(table: ConfigFile, skeleton: Skeleton,
+def _driver_path(muscle_table: MuscleTable, skeleton: Skeleton,
+                 fail: Callable[[tuple, str], ConfigError]) -> ViaPath | None:
+    """The driver's own path, if it takes one (arm26's); checked to shorten all the way as
+    the elbow bends, so that its length gives one flexion."""
+    if muscle_table.path is None:
+        if skeleton.model == "arm26":
+            raise fail(("muscle",), "with skeleton.model = \"arm26\" the [muscle] takes arm26's "
+                                    "path: add path = \"arm26\" (its name one of "
+                                    f"{', '.join(arm26.MUSCLES)})")
+        return None
+    path = _model_path(muscle_table.name, skeleton, ("muscle",), fail)
+    low, high = skeleton.min_flexion, skeleton.max_flexion
+    for flexion in np.linspace(low, high, max(2, round(high - low) + 1)):
+        if path.moment_arm_at(float(flexion)) <= 0.0:
+            raise fail(("muscle", "path"), (
+                f"{muscle_table.name} lengthens as the elbow bends at {flexion:.0f} degrees: "
+                "the [muscle] drives the elbow by its length, so it must be a flexor"))
+    return path
+
+
+def _model_path(name: str, skeleton: Skeleton, where: tuple,
+                fail: Callable[[tuple, str], ConfigError]) -> ViaPath:
+    """arm26's path of the muscle ``name``, for the table at ``where``."""
+    if skeleton.model != "arm26":
+        raise fail((*where, "path"), "path = \"arm26\" needs arm26's bones: add model = "
+                                      "\"arm26\" under [skeleton]")
+    if name not in arm26.MUSCLES:
+        raise fail((*where, "path"), (f"arm26 has no muscle {name!r}: a muscle on arm26's path "
+                                      f"is named as arm26 names it, one of "
+                                      f"{', '.join(arm26.MUSCLES)}"))
+    return arm26.path(name)
+
+
+def _companions(table: ConfigFile, skeleton: Skeleton, driver_path: ViaPath | None,
                 fail: Callable[[tuple, str], ConfigError]) -> tuple[Companion, ...]:
     """The ``[muscles.NAME]`` tables as companions at rest, checked to follow the elbow over
     the joint's whole range."""
     companions = []
-    paths = {table.muscle.name: MusclePath(skeleton.origin, skeleton.insertion)}
+    paths = {table.muscle.name: driver_path or MusclePath(skeleton.origin, skeleton.insertion)}
     for index, (name, companion_table) in enumerate(table.muscles.items()):
         where = ("muscles", name)
         if name == table.muscle.name:
             raise fail(where, f"{name!r} is the [muscle]'s name already: give each muscle "
                               "its own")
-        path = companion_table.path()
+        if companion_table.path is not None:
+            path = _model_path(name, skeleton, where, fail)
+        else:
+            path = companion_table.own_path()
         # The path first: a muscle with nowhere to lie cannot be given a length.
         problem = _path_problem(path, skeleton, paths)
         if problem is not None:
@@ -479,8 +552,8 @@ def _companions(table: ConfigFile, skeleton: Skeleton,
     return tuple(companions)
 
 
-def _path_problem(path: MusclePath, skeleton: Skeleton,
-                  others: dict[str, MusclePath]) -> tuple[str, str] | None:
+def _path_problem(path: MusclePath | ViaPath, skeleton: Skeleton,
+                  others: dict[str, MusclePath | ViaPath]) -> tuple[str, str] | None:
     """The key to blame and why, if ``path``'s attachments cannot hold a muscle over the
     joint's range (off their bones, where one of the ``others`` by name already runs,
     meeting, inside the wrapping cylinder); None if they can."""
@@ -499,7 +572,7 @@ def _path_problem(path: MusclePath, skeleton: Skeleton,
         if np.linalg.norm(end - start) < 0.5:
             return "insertion", (f"origin and insertion come within 0.5 cm of each other at "
                                  f"{flexion:g} degrees of flexion: a muscle needs room")
-    if path.wrap is not None:
+    if isinstance(path, MusclePath) and path.wrap is not None:
         for key, attachment in (("origin", path.origin), ("insertion", path.insertion)):
             reach = float(np.hypot(*attachment.in_frame()[:2]))
             if reach <= path.wrap.radius:
@@ -510,13 +583,14 @@ def _path_problem(path: MusclePath, skeleton: Skeleton,
 
 
 def _length_of(length: float | None, flexion: float | None, flexion_key: str,
-               skeleton: Skeleton, fail: Callable[[tuple, str], ConfigError]) -> float | None:
+               drive: Skeleton | PathDrive, skeleton: Skeleton,
+               fail: Callable[[tuple, str], ConfigError]) -> float | None:
     """The muscle length (cm) that ``length`` gives, or ``flexion`` (degrees) under
-    ``muscle.flexion_key``, if either."""
+    ``muscle.flexion_key`` through the ``drive``, if either."""
     if flexion is None:
         return length
     _check_flexion(flexion, skeleton, ("muscle", flexion_key), fail)
-    return skeleton.length_at(flexion)
+    return drive.length_at(flexion)
 
 
 def _check_flexion(flexion: float, skeleton: Skeleton, location: tuple,
@@ -741,7 +815,7 @@ def _write_muscle(document: tomlkit.TOMLDocument, arm: Arm, before: Arm) -> None
     muscle = arm.muscle
     table = document["muscle"]
     _write_shape(table, muscle, before.muscle,
-                 lambda: arm.skeleton.flexion(muscle.reference_length))
+                 lambda: arm.drive.flexion(muscle.reference_length))
     for companion, earlier in zip(arm.companions, before.companions):
         # A companion's shape is redefined where it is, so at the arm's flexion.
         _write_shape(document["muscles"][companion.name], companion.muscle, earlier.muscle,

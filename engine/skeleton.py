@@ -41,6 +41,10 @@ from biceps.engine.bounds import (ATTACHMENT_ALONG, ATTACHMENT_REACH, BONE, BONE
 from biceps.engine.errors import RefusedChange
 
 Bone = Literal["upper_arm", "forearm"]
+SkeletonModel = Literal["simple", "arm26"]
+"""A skeleton's bones and hinge: "simple", the two bones sized by :class:`Skeleton`'s
+lengths with the driver's attachments where its fields put them; "arm26", OpenSim's arm26
+model's (``engine/arm26.py``), whose muscles' paths come with it."""
 
 
 @dataclass(frozen=True)
@@ -126,6 +130,17 @@ class Skeleton:
     forearm: float = 25.4
     min_flexion: float = 0.0
     max_flexion: float = 130.0
+    model: SkeletonModel = "simple"
+
+    @property
+    def shoulder(self) -> np.ndarray:
+        """(3,) the humeral head's centre in world space: up the humerus's axis, or where
+        arm26 has it (2.26 cm to the outside: its hinge is not square to the humerus)."""
+        if self.model == "arm26":
+            from biceps.engine.arm26 import HEAD  # arm26's paths build on this module
+
+            return HEAD.copy()
+        return np.array([0.0, self.upper_arm, 0.0])
 
     @property
     def origin(self) -> Attachment:
@@ -185,7 +200,7 @@ class Skeleton:
         frame = forearm_frame(flexion)
         return ArmPose(
             flexion=flexion,
-            shoulder=np.array([0.0, self.upper_arm, 0.0]),
+            shoulder=self.shoulder,
             origin=place(self.origin, frame),
             elbow=np.zeros(3),
             insertion=place(self.insertion, frame),
@@ -198,9 +213,21 @@ LENGTHS = ("upper_arm", "origin_to_elbow", "elbow_to_insertion", "forearm")
 OFFSETS = ("origin_forward", "origin_lateral", "insertion_forward", "insertion_lateral")
 
 
+ARM26_RANGE = (0.0, 130.0)
+"""The flexions arm26's elbow takes (its coordinate's range), degrees."""
+
+
 def skeleton_problem(skeleton: Skeleton) -> tuple[str, str] | None:
     """What is wrong with ``skeleton``, if anything: the field to blame (a key of the
     configuration's ``[skeleton]`` table) and a sentence saying why; None if it makes sense."""
+    if skeleton.model == "arm26":
+        low, high = skeleton.min_flexion, skeleton.max_flexion
+        if not ARM26_RANGE[0] <= low < high <= ARM26_RANGE[1]:
+            return "flexion_range", (
+                f"arm26's elbow bends from {ARM26_RANGE[0]:g} to {ARM26_RANGE[1]:g} degrees: "
+                f"the range must lie within that, its start below its end, got {low:g} to "
+                f"{high:g}")
+        return None
     for names, limits in ((LENGTHS, BONE), (OFFSETS, COORDINATE)):
         for name in names:
             try:

@@ -62,14 +62,14 @@ def flexion_range(arm: Arm) -> tuple[float, float]:
     An angle worked back from a length limit can land a rounding error beyond it, where
     :meth:`Arm.at_flexion` refuses it; such an end is moved in until it is accepted.
     """
-    skeleton = arm.skeleton
+    skeleton, drive = arm.skeleton, arm.drive
     shortest, longest = arm.length_range()
-    joint_shortest, joint_longest = skeleton.length_range()
-    least = skeleton.min_flexion if longest == joint_longest else skeleton.flexion(longest)
-    most = skeleton.max_flexion if shortest == joint_shortest else skeleton.flexion(shortest)
-    while skeleton.length_at(least) > longest:
+    joint_shortest, joint_longest = drive.length_range()
+    least = skeleton.min_flexion if longest == joint_longest else drive.flexion(longest)
+    most = skeleton.max_flexion if shortest == joint_shortest else drive.flexion(shortest)
+    while drive.length_at(least) > longest:
         least = float(np.nextafter(least, most))
-    while skeleton.length_at(most) < shortest:
+    while drive.length_at(most) < shortest:
         most = float(np.nextafter(most, least))
     return least, most
 

@@ -28,6 +28,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
+from typing import Callable
 
 import numpy as np
 
@@ -46,20 +48,25 @@ refined by golden section."""
 HELIX_STEP = 0.2  # cm between the points a wrap's arc is drawn through
 
 
-@dataclass(frozen=True)
 class Wrapped:
-    """A segment's way round a surface: the points (k, 3) on the surface from the first
-    tangent point to the second, world space, and the length along the surface between
-    them (cm). The segment's whole length adds the straight lines from its start to the
-    first point and from the last to its end."""
+    """A segment's way round a surface: its tangent points ``first`` and ``last`` (3,) in
+    world space, the length along the surface between them (cm), and the points (k, 3) on
+    the surface from one to the other, first to last (`points`, made by ``sample`` when
+    first asked for: only a picture needs them). The segment's whole length adds the
+    straight lines from its start to the first point and from the last to its end."""
 
-    points: np.ndarray
-    length: float
+    def __init__(self, first: np.ndarray, last: np.ndarray, length: float,
+                 sample: Callable[[], np.ndarray]):
+        self.first, self.last, self.length = first, last, length
+        self._sample = sample
+
+    @cached_property
+    def points(self) -> np.ndarray:
+        return self._sample()
 
     def total(self, start: np.ndarray, end: np.ndarray) -> float:
         """The whole segment's length (cm) from ``start`` to ``end`` (3,) round the surface."""
-        return (float(np.linalg.norm(self.points[0] - start)) + self.length
-                + float(np.linalg.norm(end - self.points[-1])))
+        return math.dist(start, self.first) + self.length + math.dist(self.last, end)
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -78,14 +85,18 @@ class Surface:
         """(k, 3) ``points`` (k, 3) of the surface's frame in world space."""
         return points @ self.rotation.T + self.centre
 
-    def active(self, point: np.ndarray) -> bool:
+    def active(self, point) -> bool:
         """Whether a local ``point`` (3,) lies on the quadrant's half (always, with none)."""
         return self.quadrant is None or self.quadrant[1] * point[self.quadrant[0]] > 0.0
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
 class Cylinder(Surface):
-    """A cylinder of ``radius`` about its local z axis, ``length`` long (cm), centred."""
+    """A cylinder of ``radius`` about its local z axis, ``length`` long (cm), centred.
+
+    Worked out in plain floats, not numpy: a muscle's length is asked for at each of the
+    driver's steps and each pose, where numpy's calls on three numbers cost more than the
+    arithmetic."""
 
     radius: float
     length: float
@@ -93,32 +104,44 @@ class Cylinder(Surface):
     def wrap(self, start: np.ndarray, end: np.ndarray) -> Wrapped | None:
         """The segment from ``start`` to ``end`` (3,) round the cylinder, or None if it
         keeps clear of it (or an end lies inside it)."""
-        a, b = self.local(start), self.local(end)
+        ax, ay, az = self._local(start)
+        bx, by, bz = self._local(end)
         radius = self.radius
-        chord = b[:2] - a[:2]
-        across = float(chord @ chord)
-        reach_a, reach_b = math.hypot(a[0], a[1]), math.hypot(b[0], b[1])
+        cx, cy = bx - ax, by - ay
+        across = cx * cx + cy * cy
+        reach_a, reach_b = math.hypot(ax, ay), math.hypot(bx, by)
         if across == 0.0 or reach_a <= radius or reach_b <= radius:
             return None
-        nearest = -float(a[:2] @ chord) / across
-        closest = a[:2] + nearest * chord
-        if not (0.0 < nearest < 1.0 and float(closest @ closest) < radius * radius):
+        nearest = -(ax * cx + ay * cy) / across
+        px, py = ax + nearest * cx, ay + nearest * cy
+        if not (0.0 < nearest < 1.0 and px * px + py * py < radius * radius):
             return None
         # The short way round turns as the line from a to b does about the axis; a
         # quadrant may ask for the long way instead.
-        short = 1.0 if a[0] * b[1] - a[1] * b[0] >= 0.0 else -1.0
-        ways = [self._round(a, b, short), self._round(a, b, -short)]
-        active = [way for way in ways if self.active(way[0][len(way[0]) // 2])]
-        points, length = (active or ways)[0]
+        short = 1.0 if ax * by - ay * bx >= 0.0 else -1.0
+        ways = [self._round((ax, ay, az), (bx, by, bz), turning) for turning in (short, -short)]
+        active = [way for way in ways if self.active(way[3])]
+        into, out, length, _, turning, turn, climb, first_length = (active or ways)[0]
         half = 0.5 * self.length
-        if abs(points[0, 2]) > half and abs(points[-1, 2]) > half:
+        if abs(into[2]) > half and abs(out[2]) > half:
             return None  # both tangent points past the cylinder's ends, as OpenSim has it
-        return Wrapped(self.world(points), length)
 
-    def _round(self, a: np.ndarray, b: np.ndarray, turning: float):
-        """The local points on the cylinder and their length, going round from the
-        tangent point seen from ``a`` to that seen from ``b``, turning ``turning`` (+1:
-        counter-clockwise about z)."""
+        def sample() -> np.ndarray:
+            count = max(2, math.ceil(length / HELIX_STEP) + 1)
+            turns = np.linspace(0.0, turn, count)
+            angles = math.atan2(into[1], into[0]) + turning * turns
+            heights = az + climb * (first_length + radius * turns)
+            return self.world(np.column_stack([radius * np.cos(angles),
+                                               radius * np.sin(angles), heights]))
+
+        return Wrapped(self._world(into), self._world(out), length, sample)
+
+    def _round(self, a, b, turning: float):
+        """The way round from the tangent point seen from ``a`` to that seen from ``b``
+        (local, (x, y, z) each), turning ``turning`` (+1: counter-clockwise about z): the
+        two tangent points, the length between them on the cylinder, the point halfway,
+        the turning, the turn (radians), the climb per unit of planar length and the
+        planar length from ``a`` to the first tangent point."""
         radius = self.radius
         reach_a, reach_b = math.hypot(a[0], a[1]), math.hypot(b[0], b[1])
         into = math.atan2(a[1], a[0]) + turning * math.acos(radius / reach_a)
@@ -130,11 +153,29 @@ class Cylinder(Surface):
         # Unrolled, the whole path is one straight line: the climb along the axis is shared
         # in proportion to the planar lengths.
         climb = (b[2] - a[2]) / planar
-        count = max(2, math.ceil(math.hypot(arc, climb * arc) / HELIX_STEP) + 1)
-        angles = into + turning * np.linspace(0.0, turn, count)
-        heights = a[2] + climb * (first + radius * np.linspace(0.0, turn, count))
-        points = np.column_stack([radius * np.cos(angles), radius * np.sin(angles), heights])
-        return points, math.hypot(arc, climb * arc)
+        middle = into + turning * 0.5 * turn
+        return ((radius * math.cos(into), radius * math.sin(into), a[2] + climb * first),
+                (radius * math.cos(out), radius * math.sin(out), a[2] + climb * (first + arc)),
+                math.hypot(arc, climb * arc),
+                (radius * math.cos(middle), radius * math.sin(middle),
+                 a[2] + climb * (first + 0.5 * arc)),
+                turning, turn, climb, first)
+
+    @cached_property
+    def _frame(self):
+        """The rotation's rows and columns and the centre, as plain floats."""
+        return (tuple(map(tuple, self.rotation.tolist())),
+                tuple(map(tuple, self.rotation.T.tolist())), tuple(self.centre.tolist()))
+
+    def _local(self, point) -> tuple[float, float, float]:
+        _, columns, centre = self._frame
+        x, y, z = (p - c for p, c in zip(point.tolist(), centre))
+        return tuple(u * x + v * y + w * z for u, v, w in columns)
+
+    def _world(self, point) -> np.ndarray:
+        rows, _, centre = self._frame
+        return np.array([u * point[0] + v * point[1] + w * point[2] + c
+                         for (u, v, w), c in zip(rows, centre)])
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -173,7 +214,11 @@ class Ellipsoid(Surface):
         if way is None:
             return None
         points, _, along = way
-        return Wrapped(self.world(points), along)
+        placed = self.world(points)
+        # The arc drawn through a point every HELIX_STEP or so, as a cylinder's is.
+        count = max(2, math.ceil(along / HELIX_STEP) + 1)
+        drawn = placed[np.round(np.linspace(0, len(placed) - 1, count)).astype(int)]
+        return Wrapped(placed[0], placed[-1], along, lambda: drawn)
 
     def _passes_through(self, a: np.ndarray, b: np.ndarray) -> bool:
         """Whether the segment from ``a`` to ``b`` (local) enters and leaves the ellipsoid

@@ -201,7 +201,7 @@ def test_snapshot_with_an_output_and_ansi_says_both_were_given(tmp_path):
 def test_the_elbow_s_range_in_a_refusal_reads_0_not_minus_0():
     result = run("info", BUNDLED / "elbow.toml", "--length", "5")
     assert result.exit_code == 2
-    assert "26.72 to 35.25 cm (elbow flexion 0 to 130 degrees)" in result.stderr
+    assert "34.07 to 42.46 cm (elbow flexion 0 to 130 degrees)" in result.stderr
 
 
 def test_info_gives_the_range_the_muscle_itself_allows(tmp_path):

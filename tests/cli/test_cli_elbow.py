@@ -3,6 +3,7 @@ as a part of its own, in its own colour."""
 
 import json
 
+import numpy as np
 import pytest
 import trimesh
 from click.testing import CliRunner
@@ -60,3 +61,21 @@ def test_export_mesh_writes_each_muscle_as_a_named_part_in_its_colour(tmp_path):
         assert scene.geometry[name].is_watertight, name
         assert tuple(scene.geometry[name].visual.material.baseColorFactor[:3]) == rgb(colour)
     assert len(set(wanted.values())) == len(NAMES)  # colours tell them apart
+
+
+def test_info_json_gives_each_muscles_moment_arm_widest_section_and_path():
+    facts = json.loads(run("info", ELBOW, "--flexion", "90", "--json").stdout)
+    arm = load_config(ELBOW).arm.at_flexion(90.0)
+    for each, muscle, path, moment_arm in zip(facts["muscles"], arm.muscles, arm.paths,
+                                              arm.moment_arms):
+        assert each["moment_arm_cm"] == pytest.approx(moment_arm, rel=1e-12)
+        assert each["widest_section_cm2"] == pytest.approx(3.141592653589793
+                                                           * muscle.max_radius**2)
+        points = np.array(each["path_points_cm"])
+        start, end = path.ends(90.0)
+        np.testing.assert_allclose(points[[0, -1]], [start, end], atol=1e-12)
+        # The line through them is the path, but for its arcs drawn as chords.
+        along = np.linalg.norm(np.diff(points, axis=0), axis=1).sum()
+        assert along == pytest.approx(each["length_cm"], rel=1e-3)
+    moment_arms = {each["name"]: each["moment_arm_cm"] for each in facts["muscles"]}
+    assert moment_arms["BIClong"] > 0 > moment_arms["TRIlong"]

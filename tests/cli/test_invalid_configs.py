@@ -17,6 +17,22 @@ INVALID = Path(__file__).resolve().parents[1] / "invalid_configs"
 
 # Each broken file in tests/invalid_configs, and what the message must say about it.
 INVALID_CASES = {
+    "arm26_beyond_its_range.toml": (":9: skeleton.flexion_range: arm26's elbow bends from 0 to "
+                                    "130 degrees"),
+    "arm26_companion_with_origin.toml": (":10: muscles.BRA: path = \"arm26\" gives the muscle "
+                                         "its attachments and wraps: remove origin"),
+    "arm26_driver_without_path.toml": (":1: muscle: with skeleton.model = \"arm26\" the "
+                                       "[muscle] takes arm26's path: add path = \"arm26\""),
+    "arm26_extensor_drives.toml": (":3: muscle.path: TRIlong lengthens as the elbow bends at 0 "
+                                   "degrees: the [muscle] drives the elbow by its length, so it "
+                                   "must be a flexor"),
+    "arm26_path_without_arm26.toml": (":3: muscle.path: path = \"arm26\" needs arm26's bones: "
+                                      "add model = \"arm26\" under [skeleton]"),
+    "arm26_unknown_muscle.toml": (":3: muscle.path: arm26 has no muscle 'biceps': a muscle on "
+                                  "arm26's path is named as arm26 names it, one of BIClong, "
+                                  "BICshort, BRA, TRIlong, TRIlat, TRImed"),
+    "arm26_with_bone_lengths.toml": (":7: skeleton: model = \"arm26\" brings arm26's own bones "
+                                     "and attachments: remove upper_arm"),
     "after_a_list_of_nodes.toml": ":9: muscle.max_length: must be a finite number above 0 cm "
                                   "(found 'long')",
     "all_zero_growth.toml": ":3: muscle.nodes: at least one node needs a growth of 1e-06 or "
@@ -36,7 +52,7 @@ INVALID_CASES = {
                                 "to"),
     "companion_unknown_key.toml": (":10: muscles.brachialis.warp: unknown key 'warp' (did you "
                                    "mean 'wrap'?); allowed here: volume, length, flexion, nodes, "
-                                   "radius, growth, origin, insertion, wrap, wrap_radius, colour"),
+                                   "radius, growth, path, origin, insertion, wrap, wrap_radius, colour"),
     "companion_wrap_without_radius.toml": ":5: muscles.brachialis: wrap and wrap_radius go together",
     "bones_out_of_proportion.toml": (":6: skeleton.upper_arm: 1e+06 cm is more than 4 times "
                                      "the forearm's 25.4 cm"),

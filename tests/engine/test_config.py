@@ -274,3 +274,21 @@ def test_a_shape_given_by_flexion_keeps_its_flexion_through_a_contraction(tmp_pa
     text = path.read_text()
     assert "\nflexion = 63.0\n" in text
     assert load_config(path).arm.flexion == pytest.approx(90.0)
+
+
+def test_an_arm26_elbow_saves_its_edits_and_nothing_of_the_simple_skeleton(tmp_path):
+    # arm26's skeleton brings its bones: saving writes back the muscles, never the simple
+    # skeleton's lengths and attachments, which its [skeleton] may not hold.
+    path = tmp_path / "elbow.toml"
+    path.write_text((BUNDLED / "elbow.toml").read_text())
+    config = load_config(path)
+    arm, _ = config.arm.stepped(-2.0)
+    arm = arm.with_muscle_at(1, arm.muscles[1].with_radius(4, 2.6))
+    save_config(config, arm, config.view, config.light, config.render)
+    saved = path.read_text()
+    skeleton = saved[saved.index("[skeleton]"):saved.index("[render]")]
+    assert "upper_arm" not in skeleton and "origin_to_elbow" not in skeleton
+    again = load_config(path).arm
+    assert again.skeleton.model == "arm26" and again.driver_path is arm.driver_path
+    np.testing.assert_allclose(again.muscles[1].radii, arm.muscles[1].radii, rtol=1e-12)
+    assert again.flexion == pytest.approx(arm.flexion, abs=1e-9)

@@ -1,5 +1,10 @@
-"""The elbow's six muscles (configs/elbow.toml): each at its own constant volume at every
-pose, their lengths against OpenSim's arm26, and no muscle through a bone or another."""
+"""The elbow's six muscles (configs/elbow.toml) on arm26's skeleton and paths: each at its own
+constant volume at every pose, its length and moment arm arm26's, and laid in layers round
+the humerus as an anatomist draws them, clear of the bones and of each other.
+
+Measured on the exported meshes with libraries independent of ours (trimesh, manifold3d,
+and plane sections of our own in tests/sections.py), at every 5 degrees from 0 to 130.
+"""
 
 import json
 from pathlib import Path
@@ -7,23 +12,23 @@ from pathlib import Path
 import manifold3d
 import numpy as np
 import pytest
-import trimesh
 from hypothesis import given, settings, strategies as st
 
 from biceps.configs import FOLDER
-from biceps.engine.anatomy import BONES, arm_parts, tendon_share
-from biceps.engine.packing import arm_leans
+from biceps.engine import arm26
+from biceps.engine.anatomy import BONES, arm_parts
 from biceps.engine.config import load_config
 from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import VOLUME_MODES
-from solids import exported, solid
+from sections import Sliced, area, centroid, hull_perimeter, thickness_along
+from solids import distance, exported, solid, winding
 
 # arm26's six muscles at every 5 degrees: benchmarks/arm26_reference.py --write made it.
 REFERENCE = json.loads((Path(__file__).parent / "data" / "arm26_elbow.json").read_text())
 FLEXORS = ("BIClong", "BICshort", "BRA")
 EXTENSORS = ("TRIlong", "TRIlat", "TRImed")
-FLEXIONS = REFERENCE["flexion_deg"][::2]  # every 10 degrees
-LENGTHS = {name: lengths[::2] for name, lengths in REFERENCE["length_mm"].items()}
+BICEPS = ("BIClong", "BICshort")
+FLEXIONS = REFERENCE["flexion_deg"]  # 0 to 130 by 5
 SEGMENTS = 24
 
 
@@ -40,15 +45,17 @@ def in_mode(arm, mode):
 
 
 def test_the_bundled_elbow_has_arm26s_six_muscles_the_biceps_driving(elbow):
-    assert elbow.names == ("BIClong", "BRA", "BICshort", "TRImed",
-                           "TRIlat", "TRIlong")
-    heads = elbow.muscles[0].reference_volume + elbow.muscles[1].reference_volume
+    assert elbow.names == ("BIClong", "BRA", "BICshort", "TRImed", "TRIlat", "TRIlong")
+    assert elbow.skeleton.model == "arm26"
+    assert all(path is arm26.path(name) for name, path in zip(elbow.names, elbow.paths))
+    heads = elbow.muscles[0].reference_volume + elbow.muscles[2].reference_volume
     assert 150 <= heads <= 250  # both heads of the biceps, cm^3 (SPEC 2.3)
 
 
-@settings(max_examples=4, deadline=None, derandomize=True)
-@given(seed=st.integers(0, 2**32 - 1), mode=st.sampled_from(VOLUME_MODES))
-def test_every_muscle_keeps_its_volume_over_10000_random_elbow_changes(elbow, seed, mode):
+@pytest.mark.parametrize("mode", VOLUME_MODES)
+@settings(max_examples=1, deadline=None, derandomize=True)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_every_muscle_keeps_its_volume_over_10000_random_elbow_changes(elbow, mode, seed):
     arm = in_mode(elbow, mode)
     conserved = [muscle.reference_volume for muscle in arm.muscles]
     flexions = np.random.default_rng(seed).uniform(0.0, 130.0, 10_000)
@@ -61,50 +68,41 @@ def test_every_muscle_keeps_its_volume_over_10000_random_elbow_changes(elbow, se
     assert {muscle.volume_mode for muscle in arm.muscles} == {mode}
 
 
-def test_both_volume_modes_are_tried_by_the_property():
-    # derandomize=True with 4 examples over two modes: make sure both are among them.
-    seen = set()
-
-    @settings(max_examples=4, deadline=None, derandomize=True)
-    @given(seed=st.integers(0, 2**32 - 1), mode=st.sampled_from(VOLUME_MODES))
-    def record(seed, mode):
-        seen.add(mode)
-
-    record()
-    assert seen == set(VOLUME_MODES)
-
-
 @pytest.mark.parametrize("name", FLEXORS + EXTENSORS)
-def test_each_muscles_length_change_follows_arm26_within_5_mm(elbow, name):
-    # configs/elbow.toml names its muscles as arm26 does.
-    theirs = np.array(LENGTHS[name])
+def test_each_muscles_length_and_moment_arm_are_arm26s(elbow, name):
+    # The issue asks for 2 mm; the paths give a tenth of a millimetre and half of one.
     index = elbow.names.index(name)
-    ours = np.array([10.0 * elbow.at_flexion(f).muscles[index].length for f in FLEXIONS])
-    assert np.max(np.abs((ours - ours[0]) - (theirs - theirs[0]))) <= 5.0
+    posed = [elbow.at_flexion(flexion) for flexion in FLEXIONS]
+    lengths = np.array([10.0 * arm.lengths[index] for arm in posed])
+    moment_arms = np.array([10.0 * arm.moment_arms[index] for arm in posed])
+    assert np.abs(lengths - REFERENCE["length_mm"][name]).max() <= 0.1
+    assert np.abs(moment_arms - REFERENCE["moment_arm_mm"][name]).max() <= 0.5
+
+
+def test_the_driver_finds_the_flexion_its_length_puts_the_elbow_at_to_1e_12_degrees(elbow):
+    for flexion in np.linspace(0.0, 130.0, 27):
+        length = elbow.drive.length_at(float(flexion))
+        assert elbow.at_length(length).flexion == pytest.approx(flexion, abs=1e-12)
 
 
 def test_the_triceps_lengthens_while_the_flexors_shorten(elbow):
-    lengths = np.array([[m.length for m in elbow.at_flexion(f).muscles] for f in FLEXIONS])
+    lengths = np.array([elbow.at_flexion(f).lengths for f in FLEXIONS])
     steps = np.diff(lengths, axis=0)
     for index, name in enumerate(elbow.names):
         assert np.all(steps[:, index] < 0) if name in FLEXORS else np.all(steps[:, index] > 0)
-    assert set(elbow.names) == set(FLEXORS) | set(EXTENSORS)
-
-
-def test_the_triceps_wraps_round_the_back_of_the_elbow_when_bent(elbow):
-    triceps = elbow.companions[elbow.names.index("TRIlong") - 1]
-    assert not triceps.path.wraps(0.0) and triceps.path.wraps(130.0)
-    # Wrapped, its moment arm is the cylinder's radius: 1 degree more lengthens it by R rad.
-    grows = triceps.path.length_at(121.0) - triceps.path.length_at(120.0)
-    assert grows == pytest.approx(triceps.path.wrap.radius * np.radians(1.0), rel=0.02)
 
 
 @pytest.fixture(scope="module")
-def solids(elbow, tmp_path_factory):
-    """Every part at every 10 degrees, exported as glTF, read back and made solid."""
-    meshes = exported(elbow, FLEXIONS, SEGMENTS, tmp_path_factory.mktemp("elbow"))
+def posed(elbow, tmp_path_factory):
+    """Every part at every 5 degrees, exported as glTF and read back: {flexion: {name:
+    trimesh.Trimesh}}."""
+    return exported(elbow, FLEXIONS, SEGMENTS, tmp_path_factory.mktemp("elbow"))
+
+
+@pytest.fixture(scope="module")
+def solids(posed):
     return {flexion: {name: solid(mesh) for name, mesh in parts.items()}
-            for flexion, parts in meshes.items()}
+            for flexion, parts in posed.items()}
 
 
 @pytest.mark.parametrize("flexion", FLEXIONS)
@@ -117,101 +115,121 @@ def test_no_muscle_shares_more_than_1_percent_with_the_bones(elbow, solids, flex
 
 
 @pytest.mark.parametrize("flexion", FLEXIONS)
-def test_muscles_overlap_each_other_by_at_most_5_percent_of_the_smaller(elbow, solids,
-                                                                         flexion):
+def test_muscles_share_at_most_3_percent_of_the_smaller(elbow, solids, flexion):
     parts = solids[flexion]
     names = elbow.names
     for i, first in enumerate(names):
         for second in names[i + 1:]:
             smaller = min(parts[first].volume(), parts[second].volume())
-            assert (parts[first] ^ parts[second]).volume() <= 0.05 * smaller, (first, second)
+            assert (parts[first] ^ parts[second]).volume() <= 0.03 * smaller, (first, second)
 
 
 @pytest.mark.parametrize("flexion", FLEXIONS)
-def test_every_muscles_mesh_holds_its_volume_wrapped_or_straight(elbow, flexion):
+def test_every_muscles_mesh_is_closed_and_holds_its_volume(elbow, posed, flexion):
+    # Each section is a polygon with its section's area exactly (the polygon's factor is
+    # 1), so the mesh holds the muscle's volume but for its facets between sections that
+    # turn and change their shape, and over its caps: 0.2 % at most.
     arm = elbow.at_flexion(flexion)
-    parts = arm_parts(arm, SEGMENTS)
-    polygon = SEGMENTS * np.sin(2 * np.pi / SEGMENTS) / (2 * np.pi)
-    for name, muscle, path in zip(arm.names, arm.muscles, arm.paths):
-        mesh = trimesh.Trimesh(parts[name].vertices, parts[name].triangles, process=False)
+    for name, muscle in zip(arm.names, arm.muscles):
+        mesh = posed[flexion][name]
         assert mesh.is_watertight and mesh.is_winding_consistent, name
-        # Straight, the sections moved off the bones keep the volume to the caps' facets;
-        # wrapped, the bend's sections (which stay put) are a polygon of the arc as well.
-        tolerance = 1e-3 if path.wraps(flexion) else 3e-4
-        assert mesh.volume == pytest.approx(polygon * muscle.volume, rel=tolerance), name
-    assert any(path.wraps(flexion) for path in arm.paths) == (flexion <= 40 or flexion >= 70)
+        assert mesh.volume == pytest.approx(muscle.volume, rel=2e-3), name
 
 
-# How far a belly may stand from the humerus's axis (the world's y, engine/skeleton.py): an
-# adult's upper arm is 30 to 40 cm round its middle (the NHANES anthropometric reference
-# data, Fryar et al. 2021), its skin 5 to 6.5 cm from its centre, and the humerus lies up
-# to a centimetre off that centre. Round sections of these volumes cannot pack as close as
-# real muscle, which flattens against its neighbours: laid round the humerus they reach
-# 7.8 cm at most (the biceps' long head); stacked in the plane of the bend, as the triceps
-# were, 11.9 cm.
-BELLY_REACH = 8.0
+def _humerus_frame(arm):
+    """The humerus's axis, up from the elbow's centre, and its front and outside."""
+    up = arm.skeleton.shoulder / np.linalg.norm(arm.skeleton.shoulder)
+    front = np.array([1.0, 0.0, 0.0]) - up[0] * up
+    front /= np.linalg.norm(front)
+    return up, front, np.cross(front, up)
+
+
+@pytest.fixture(scope="module")
+def sections(elbow, posed):
+    """Each muscle's and the humerus's mesh, ready to cut square to the humerus, by
+    flexion and name."""
+    up = _humerus_frame(elbow)[0]
+    return {flexion: {name: Sliced(mesh.vertices, mesh.faces, up)
+                      for name, mesh in parts.items() if name in (*elbow.names, "humerus")}
+            for flexion, parts in posed.items()}
 
 
 @pytest.mark.parametrize("flexion", FLEXIONS)
-def test_every_belly_lies_round_the_humerus_not_fanned_out(elbow, flexion):
+def test_at_mid_humerus_the_muscles_pack_within_an_arms_size(elbow, sections, flexion):
+    # An adult's mid-arm is 25 to 35 cm round, fat and skin included, its muscle 4.5 to
+    # 5.5 cm from the humerus's axis at most (NHANES, Fryar et al. 2021); the biceps and
+    # brachialis make at least 3 cm of muscle in front of the bone.
+    up, front, outside = _humerus_frame(elbow)
+    middle = 0.5 * float(np.linalg.norm(elbow.skeleton.shoulder))
+    cut = {name: sliced.at(middle) for name, sliced in sections[flexion].items()}
+    points = np.concatenate([segments.reshape(-1, 3) for segments in cut.values()])
+    across = points - np.outer(points @ up, up)
+    muscle = np.concatenate([cut[name].reshape(-1, 3) for name in elbow.names])
+    muscle -= np.outer(muscle @ up, up)
+    assert np.linalg.norm(muscle, axis=1).max() <= 5.0
+    assert hull_perimeter(np.column_stack([across @ front, across @ outside])) <= 28.0
+    in_front = sum(thickness_along(cut[name], middle * up, front, up)
+                   for name in elbow.names if len(cut[name]))
+    assert in_front >= 3.0
+
+
+@pytest.mark.parametrize("flexion", FLEXIONS)
+def test_the_biceps_lies_in_front_as_one_belly_over_a_smaller_brachialis(elbow, sections,
+                                                                       flexion):
+    up, front, _ = _humerus_frame(elbow)
+    parts = sections[flexion]
+    middle = 0.5 * float(np.linalg.norm(elbow.skeleton.shoulder))
+    for level in np.arange(4.0, 20.01, 1.0):
+        cut = {name: parts[name].at(level) for name in elbow.names}
+        frontmost = max((name for name in elbow.names if len(cut[name])),
+                        key=lambda name: (cut[name].reshape(-1, 3) @ front).max())
+        assert frontmost in BICEPS, (level, frontmost)
+        if level <= middle:  # the lower half: the two heads one belly
+            apart = centroid(cut["BIClong"], up) - centroid(cut["BICshort"], up)
+            assert np.linalg.norm(apart) <= 2.5, level
+    largest = {"BRA": 0.0, "biceps": 0.0}
+    for level in np.arange(0.25, 30.0, 0.5):
+        cut = {name: parts[name].at(level) for name in (*BICEPS, "BRA")}
+        areas = {name: area(segments, up) if len(segments) else 0.0
+                 for name, segments in cut.items()}
+        largest["BRA"] = max(largest["BRA"], areas["BRA"])
+        largest["biceps"] = max(largest["biceps"], areas["BIClong"] + areas["BICshort"])
+    assert largest["BRA"] <= largest["biceps"]
+
+
+@pytest.mark.parametrize("flexion", FLEXIONS)
+def test_every_tendon_ends_on_its_own_bone_and_inside_no_other(elbow, posed, flexion):
     arm = elbow.at_flexion(flexion)
-    parts = arm_parts(arm, SEGMENTS)
+    parts = posed[flexion]
     for name, muscle, path in zip(arm.names, arm.muscles, arm.paths):
-        belly = tendon_share(muscle, path, flexion, parts[name]) < 0.5
-        vertices = parts[name].vertices[belly]
-        reach = np.hypot(vertices[:, 0], vertices[:, 2]).max()
-        assert reach <= BELLY_REACH, (name, reach)
+        for point, bone, radius in zip(path.ends(flexion), arm26.BONES[name],
+                                       muscle.radii[[0, -1]]):
+            assert winding(point, parts[bone]) > 0.5 or distance(point, parts[bone]) <= 0.1, \
+                (name, bone)
+            for other in BONES:
+                if other != bone:
+                    assert winding(point, parts[other]) < 0.5, (name, other)
+            # The muscle's drawn tendon ends there, not elsewhere.
+            nearest = np.linalg.norm(parts[name].vertices - point, axis=1).min()
+            assert nearest <= radius + 0.1, (name, bone)
 
 
-@pytest.mark.parametrize("flexion", FLEXIONS)
-def test_every_straight_muscle_bows_out_to_one_side_and_never_snakes(elbow, flexion):
-    # Each section's move off the muscle's straight line, seen along it: an S (or a muscle
-    # winding round the bone) moves some sections one way and others another.
-    arm = elbow.at_flexion(flexion)
-    parts = arm_parts(arm, SEGMENTS)
-    for name, path in zip(arm.names, arm.paths):
-        if path.wraps(flexion):
-            continue
-        start, end = path.ends(flexion)
-        axis = (end - start) / np.linalg.norm(end - start)
-        centres = parts[name].vertices[1:-1].reshape(-1, SEGMENTS, 3).mean(axis=1) - start
-        moves = centres - np.outer(centres @ axis, axis)
-        sizes = np.linalg.norm(moves, axis=1)
-        ways = moves[sizes > 0.2] / sizes[sizes > 0.2, None]
-        mean = ways.mean(axis=0) / np.linalg.norm(ways.mean(axis=0))
-        turn = np.degrees(np.arccos(np.clip(ways @ mean, -1.0, 1.0))).max(initial=0.0)
-        assert turn <= 10.0, (name, turn)
-
-
-@pytest.mark.parametrize("flexion", FLEXIONS)
+@pytest.mark.parametrize("flexion", [0.0, 60.0, 130.0])
 def test_each_muscle_lies_on_its_own_side_of_the_humerus(elbow, flexion):
-    # The brachialis on the front of the humerus, the biceps' short head inside (-z) and
-    # long head outside (+z) over it; the triceps' medial and lateral heads either side of
-    # its back, the long head over them, farther back than both.
+    # The brachialis on the front of the humerus, the biceps over it; the triceps' medial
+    # head on its back, the lateral head outside, the long head inside.
     arm = elbow.at_flexion(flexion)
     parts = arm_parts(arm, SEGMENTS)
-    middle = {}
-    for name, muscle, path in zip(arm.names, arm.muscles, arm.paths):
-        belly = tendon_share(muscle, path, flexion, parts[name]) < 0.5
-        middle[name] = parts[name].vertices[belly].mean(axis=0)
-    x, z = ({name: point[k] for name, point in middle.items()} for k in (0, 2))
+    up, front, outside = _humerus_frame(arm)
+    middle = {name: parts[name].vertices.mean(axis=0) for name in arm.names}
+    x = {name: float(point @ front) for name, point in middle.items()}
+    z = {name: float(point @ outside) for name, point in middle.items()}
     assert x["BRA"] > 0.0 and x["BICshort"] > 0.0 and x["BIClong"] > 0.0
-    assert z["BICshort"] < 0.0 < z["BIClong"]
     assert max(x["TRImed"], x["TRIlat"], x["TRIlong"]) < 0.0
-    assert z["TRImed"] < 0.0 < z["TRIlat"]
-    assert x["TRIlong"] < min(x["TRImed"], x["TRIlat"])
-
-
-def test_the_muscles_keep_their_leans_as_the_elbow_moves(elbow):
-    # Chosen once over the whole range, so that no muscle jumps to another side mid-bend.
-    leans = {arm_leans(elbow.at_flexion(flexion)) for flexion in FLEXIONS}
-    assert len(leans) == 1
+    assert z["TRIlong"] < z["TRImed"] < z["TRIlat"]
 
 
 def test_no_muscle_jumps_as_the_elbow_bends_a_degree(elbow):
-    # Where a triceps' path starts to wrap round the elbow (61 to 68 degrees), its sections
-    # near the bend stop moving; the heads laid over it used to jump at once to stack
-    # behind it, the lateral head 7.0 cm and the long head 8.4 cm in one degree.
     before = None
     for flexion in np.arange(0.0, 130.5, 1.0):
         parts = arm_parts(elbow.at_flexion(float(flexion)), SEGMENTS)
@@ -219,7 +237,7 @@ def test_no_muscle_jumps_as_the_elbow_bends_a_degree(elbow):
                    for name in elbow.names}
         for name in elbow.names if before else ():
             step = np.linalg.norm(centres[name] - before[name], axis=1).max()
-            assert step <= 3.0, (name, flexion, step)
+            assert step <= 0.75, (name, flexion, step)
         before = centres
 
 
@@ -256,6 +274,5 @@ def test_every_muscles_length_and_moment_arm_are_its_paths(elbow):
         assert length == pytest.approx(path.length_at(70.0), rel=1e-12)
         assert moment_arm == pytest.approx(path.moment_arm_at(70.0), rel=1e-12)
     assert arm.moment_arms[0] == pytest.approx(arm.moment_arm, rel=1e-12)
-    flexors = [arm.names.index(name) for name in FLEXORS]
-    assert all(arm.moment_arms[i] > 0 for i in flexors)
+    assert all(arm.moment_arms[arm.names.index(name)] > 0 for name in FLEXORS)
     assert all(arm.moment_arms[arm.names.index(name)] < 0 for name in EXTENSORS)

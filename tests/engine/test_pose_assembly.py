@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from biceps.engine.anatomy import arm_parts, tendon_share
+from biceps.engine.anatomy import arm_parts, parts_and_tendons
 from biceps.engine.config import load_config, rgb
 from biceps.engine.mesh import _lengths, _spokes, _spokes_along
 from biceps.engine.scene import companion_segments, scene_mesh, strain_colour
@@ -41,7 +41,8 @@ def test_each_muscle_blends_from_its_belly_into_its_tendons_the_rest_bone():
     for colour_by in ("muscle", "strain"):
         render = ELBOW.render.__class__(**{**vars(ELBOW.render), "colour_by": colour_by})
         _, albedo, _ = scene_mesh(arm, render, hidden)
-        parts = arm_parts(arm, render.segments, hidden, companion_segments(render.segments))
+        parts, tendons = parts_and_tendons(arm, render.segments, hidden,
+                                           companion_segments(render.segments))
         bone = np.array(rgb(render.bone_colour), np.float32) / 255
         tendon_colour = np.array(rgb(render.tendon_colour), np.float32) / 255
         colours = (render.muscle_colour, *(c.colour for c in arm.companions))
@@ -52,7 +53,8 @@ def test_each_muscle_blends_from_its_belly_into_its_tendons_the_rest_bone():
                 continue
             belly = (strain_colour(muscle.length / muscle.reference_length - 1.0)
                      if colour_by == "strain" else np.array(rgb(colour), np.float32) / 255)
-            tendon = tendon_share(muscle, path, arm.flexion, parts[name])[:, None]
+            tendon = tendons[name][:, None]
+            assert tendon.min() == 0.0 and tendon.max() == 1.0, name  # belly and tendon
             expected[name] = (1.0 - tendon) * belly + tendon * tendon_colour
         assert albedo.dtype == np.float32
         np.testing.assert_array_equal(albedo, np.concatenate(list(expected.values())))
@@ -74,10 +76,12 @@ def test_the_picture_draws_the_companions_with_fewer_segments_and_exports_keep_t
         if same:
             np.testing.assert_array_equal(part.vertices, full[name].vertices)
     # The same muscles, only more coarsely round: the same poles (where the tendons end on
-    # bone), the same extent to within how far a ring of 32 misses its circle (2.5 cm
-    # radius: 0.012 cm).
+    # bone; over an end section lying on the humerus, its 32-gon's centre is a hair from
+    # its 48-gon's), the same extent to within how far a ring of 32 misses its section's
+    # outline (a 2.5 cm circle's by 0.012 cm, a slice's tighter bends by up to 0.02 cm).
     for name in arm.names[1:]:
-        np.testing.assert_array_equal(light[name].vertices[[0, -1]], full[name].vertices[[0, -1]])
+        np.testing.assert_allclose(light[name].vertices[[0, -1]], full[name].vertices[[0, -1]],
+                                   atol=0.002)
         for bound in (np.min, np.max):
             np.testing.assert_allclose(bound(light[name].vertices, axis=0),
-                                       bound(full[name].vertices, axis=0), atol=0.015)
+                                       bound(full[name].vertices, axis=0), atol=0.02)

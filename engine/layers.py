@@ -1,0 +1,695 @@
+"""The elbow's muscles laid in layers round the humerus, each section shaped to what lies
+under it, each muscle's volume exact.
+
+A muscle runs along its path (``engine/path.py``): the line through its points on the bones
+and round its wrapping surfaces, as long as the muscle. Where that path runs down the upper
+arm (within ``STEEPEST`` of the humerus's axis, in one run) the muscle is drawn as a stack
+of slices across the humerus, each in a plane square to the humerus's axis; elsewhere
+(over the humeral head, round the elbow) as round sections square to the path, centred on
+it. Both keep the volume exactly:
+
+- Square to the path and centred on it, a section sweeps ``integral A ds`` along the path
+  (Pappus: the first moment of a section about its own centroid is nought), so a node
+  profile of the muscle's length, laid along its path, holds the muscle's volume.
+- Across the humerus the slices lie in parallel planes, so the volume is ``integral A dh``
+  over their heights whatever their shapes or places (Cavalieri). The stretch of the
+  muscle from the path's entry to its exit (length ``ds``) is spread evenly over the drop
+  in height (``dh``): each slice's area is its section's ``pi r^2`` times ``ds / dh``, so
+  the slices hold that stretch's volume.
+
+Each slice is a shell laid on what is already there round the humerus at its height (the
+bones, and the muscles laid before it, deepest first): over a window of angles round the
+humerus centred on the muscle's side, its inner face follows what lies under it and its
+outer face rises by ``T sqrt(1 - u^2)`` (u from -1 to 1 across the window), so it lies on
+the bone or its neighbours and is round outside; ``T`` is solved so that the slice has its
+area exactly. The window is as wide as the muscle's flatness asks (`Lie.aspect`, width over
+thickness), up to its `Lie.spread`; a bone further out (the forearm, bent up in front) caps
+the thickness and the slice spreads sideways instead. Near the ends of the stretch the
+slices turn into circles on the path, so the slices meet the round sections, and the
+tendons end, on the path's points.
+
+Each section is a polygon of ``segments`` vertices with the section's area exactly, so the
+mesh holds the muscle's volume to its facets along it and over its end caps.
+
+Angles round the humerus (``phi``, radians) start at its front and turn towards its outside:
+0 is the front, pi / 2 the outside (lateral), pi the back. Arrays of a muscle's sections
+run from its origin to its insertion; a section's vertex ``j`` is at ``theta = 2 pi j /
+segments``, counter-clockwise about the way the muscle runs, from the side facing away from
+the humerus (``theta = 0``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from biceps.engine.jit import helper, ngjit
+from biceps.engine.mesh import Mesh, _closed_tube
+from biceps.engine.muscle import Muscle
+from biceps.engine.stations import distances_along, section_radii, shares
+
+STEEPEST = math.radians(60.0)
+"""How far from the humerus's axis the path may lean where the muscle is sliced across it."""
+ANGLES = 120
+"""Angles round the humerus at which what lies there is kept (3 degrees apart)."""
+GAP = 0.05  # cm left between a slice and what it lies on
+BRIDGE = 0.4  # cm: what lies this close outside the humerus's own layers counts as under
+BLEND = 2.0  # cm of height over which the slices turn to the path at either end
+END = 0.8  # cm of a muscle's path at either end drawn round on it, where its tendon holds on
+MERGE = 4.0  # cm of height over which two heads come to share one belly
+NEAREST = 0.8  # cm: the least radius a slice's width is measured at
+ROUND = 3.0  # cm^2: a slice this large or larger is as flat as its muscle's aspect
+STAND = (0.4, 1.2)  # cm: from this thick to this, a muscle comes to be one to lie beside
+TAPER = 0.5  # cm past a muscle's end slices over which its window thins to nothing
+SOLVED = 64  # vertices of the polygon a slice's thickness and width are solved on
+BISECTIONS = 36  # halvings of a slice's thickness or width: to 30 cm / 2^36, 4e-10 cm
+SECTIONS = 97
+"""Sections of a muscle from origin to insertion, the same at every pose, so that its mesh
+keeps its shape of arrays (about every 4 mm of the biceps)."""
+CAP_RINGS = 6  # rings of each end cap, the end section's excluded
+OPEN = 1e3  # cm: as far out as nothing lies
+HINGE = np.array([0.0, 0.0, 1.0])  # the elbow's axis, world space
+
+
+@dataclass(frozen=True)
+class Lie:
+    """Where a muscle lies round the humerus: the angle of its side (``side``, degrees
+    round from the front towards the outside, at the top of its stretch down the upper arm
+    and at its bottom), how flat its slices are (``aspect``, width over thickness) and how
+    far round either way they may spread from their middle (``spread``, degrees).
+    ``beside``: a muscle laid before it that it lies against, on the side of it that
+    ``side`` is on (its slices then start at that muscle's edge, wherever it has one).
+    Below ``merge_below`` (cm above the elbow's centre) two such muscles make one belly:
+    each slice is then thickest at its ``wall`` edge (+1 its edge round towards the outside,
+    -1 towards the inside), where the two meet, so that together they make one round
+    slice; a muscle with a wall has it at ``side`` there. ``lane``: how far along the
+    hinge (cm, towards the outside) its tendon keeps from its path towards its insertion,
+    beside the others that end on the same point. ``lowest``: the least height (cm above
+    the elbow's centre) its slices go down to; below, it keeps to its path."""
+
+    side: tuple[float, float]
+    aspect: float = 1.6
+    spread: float = 60.0
+    beside: str | None = None
+    wall: int = 0
+    merge_below: float = -math.inf
+    lane: float = 0.0
+    lowest: float = 0.0
+
+
+class Humerus:
+    """The humerus's axis, from the elbow's centre (the world's origin) up through the
+    head's centre ``top`` (3,); with ``front`` and ``outside`` it makes a right-handed frame
+    (front, up, outside), nearly world x, y, z."""
+
+    def __init__(self, top: np.ndarray):
+        self.up = top / np.linalg.norm(top)
+        front = np.array([1.0, 0.0, 0.0]) - self.up[0] * self.up
+        self.front = front / np.linalg.norm(front)
+        self.outside = np.cross(self.front, self.up)
+
+    def ray(self, phi) -> np.ndarray:
+        """(..., 3) the unit directions across the humerus at angles ``phi`` (...)."""
+        phi = np.asarray(phi)[..., None]
+        return np.cos(phi) * self.front + np.sin(phi) * self.outside
+
+    def polar(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Heights (k,), distances from the axis (k,) and angles (k,) of ``points`` (k, 3)."""
+        heights = points @ self.up
+        front, outside = points @ self.front, points @ self.outside
+        return heights, np.hypot(front, outside), np.arctan2(outside, front)
+
+
+@dataclass(frozen=True)
+class Laid:
+    """A muscle laid: its sections' vertices (m, segments, 3) from origin to insertion and
+    each one's place along the muscle (m,) in cm from its origin; and, for the muscles laid
+    after it, its slices across the humerus: their heights (k,), the inner and outer radii
+    round the humerus (k, ANGLES; NaN where it is not) and each one's middle angle and
+    half-width (radians), and its thickness (k, 3)."""
+
+    rings: np.ndarray
+    places: np.ndarray
+    heights: np.ndarray
+    inner: np.ndarray
+    outer: np.ndarray
+    windows: np.ndarray
+
+
+class Ground:
+    """What lies round the humerus as the muscles are laid on it: the bones, as spheres
+    (centres (n, 3), radii (n,), world space), and each muscle's slices."""
+
+    def __init__(self, humerus: Humerus, centres: np.ndarray, radii: np.ndarray):
+        self.humerus = humerus
+        self.centres, self.radii = centres, radii
+        self.laid: dict[str, Laid] = {}
+        self._phi = np.linspace(-np.pi, np.pi, ANGLES, endpoint=False)
+        self._rays = humerus.ray(self._phi)  # (ANGLES, 3)
+
+    def add(self, name: str, laid: Laid) -> None:
+        self.laid[name] = laid
+
+    def under(self, levels: np.ndarray, besides: str | None = None
+              ) -> tuple[np.ndarray, np.ndarray]:
+        """At each of ``levels`` (k,) heights and each of the ANGLES angles round the
+        humerus: how far from its axis what lies on it reaches (the bone and the layers on
+        it, joined across gaps under ``BRIDGE``; the muscle ``besides`` left out, which a
+        slice stands beside), and where the next thing out begins (``OPEN`` if nothing
+        does): (k, ANGLES) each."""
+        offsets, front, outside, radii = self._bone_circles(levels)
+        laid = [self._muscle(laid, levels) for name, laid in self.laid.items()
+                if name != besides]
+        inner = (np.stack([inner for inner, _ in laid]) if laid
+                 else np.empty((0, len(levels), ANGLES)))
+        outer = np.stack([outer for _, outer in laid]) if laid else inner
+        reach = np.empty((len(levels), ANGLES))
+        ceiling = np.empty((len(levels), ANGLES))
+        _sweep(offsets, front, outside, radii, np.cos(self._phi), np.sin(self._phi), inner,
+               outer, BRIDGE, OPEN, reach, ceiling)
+        return reach, ceiling
+
+    def _bone_circles(self, levels: np.ndarray):
+        """The circles in which the bone spheres cut the levels' planes: by level, level
+        k's from ``offsets[k]`` to ``offsets[k + 1]`` (k + 1,); their centres' distances
+        from the humerus's axis towards its front and its outside (p,) each, and their
+        radii (p,)."""
+        humerus = self.humerus
+        heights = self.centres @ humerus.up
+        above = heights[:, None] - levels[None, :]  # (n, k)
+        level, spheres = np.nonzero((np.abs(above) < self.radii[:, None]).T)  # by level
+        offsets = np.concatenate([[0], np.cumsum(np.bincount(level, minlength=len(levels)))])
+        centres = self.centres[spheres]
+        radii = np.sqrt(self.radii[spheres] ** 2 - above[spheres, level] ** 2)
+        return offsets, centres @ humerus.front, centres @ humerus.outside, radii
+
+    def _muscle(self, laid: Laid, levels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """A laid muscle's inner and outer radii at ``levels``, between its slices' (NaN
+        off its stretch): (k, ANGLES) each."""
+        if len(laid.heights) < 2:
+            nothing = np.full((len(levels), ANGLES), np.nan)
+            return nothing, nothing
+        order = np.argsort(laid.heights)
+        heights = laid.heights[order]
+        at = np.clip(np.searchsorted(heights, levels) - 1, 0, len(heights) - 2)
+        share = ((levels - heights[at]) / (heights[at + 1] - heights[at]))[:, None]
+        inside = ((levels >= heights[0]) & (levels <= heights[-1]))[:, None]
+        blended = []
+        for values in (laid.inner[order], laid.outer[order]):
+            value = (1.0 - share) * values[at] + share * values[at + 1]
+            blended.append(np.where(inside, value, np.nan))
+        return blended[0], blended[1]
+
+    def window(self, name: str, levels: np.ndarray) -> np.ndarray:
+        """Muscle ``name``'s slices' windows at ``levels`` (k, 3), as `Laid` keeps them (NaN
+        where it has none)."""
+        laid = self.laid.get(name)
+        if laid is None or len(laid.heights) < 2:
+            return np.full((len(levels), 3), np.nan)
+        order = np.argsort(laid.heights)
+        heights = laid.heights[order]
+        windows = laid.windows[order].copy()
+        windows[:, 0] = np.unwrap(windows[:, 0])
+        values = np.column_stack([np.interp(levels, heights, column) for column in windows.T])
+        # Past its end slices it thins to nothing over TAPER, so that what lies beside it
+        # does not jump as its ends move.
+        beyond = np.maximum(heights[0] - levels, levels - heights[-1])
+        values[:, 2] *= np.clip(1.0 - beyond / TAPER, 0.0, 1.0)
+        return np.where((beyond < TAPER)[:, None], values, np.nan)
+
+
+@ngjit
+def _sweep(offsets, front, outside, radii, cos, sin, inner, outer, bridge, empty, reach,
+           ceiling):
+    """For each level k and angle a round the humerus: ``reach[k, a]``, how far out what
+    lies on the humerus reaches, and ``ceiling[k, a]``, where the next thing out begins
+    (``empty`` if nothing does). What lies there: the bones' circles at level k (those
+    from ``offsets[k]`` to ``offsets[k + 1]``, centred ``front`` and ``outside`` of the
+    axis, of ``radii``), met by the ray at the angle whose cosine and sine are ``cos[a]``
+    and ``sin[a]``; and the muscles, from ``inner`` to ``outer`` (m, k, A), NaN where there
+    is none. The reach grows from the axis by everything that begins near it: wholly if it
+    begins within ``bridge / 2`` of it, less and less as the gap grows to ``bridge`` (so
+    that the reach changes smoothly as things move), not at all beyond; the first thing
+    further out than that is the ceiling."""
+    levels, angles = reach.shape
+    for k in range(levels):
+        for a in range(angles):
+            out = 0.0
+            grew = True
+            while grew:
+                grew = False
+                for i in range(offsets[k], offsets[k + 1] + inner.shape[0]):
+                    start, end = _interval(i, k, a, offsets, front, outside, radii, cos, sin,
+                                           inner, outer)
+                    if start == start and end > out:
+                        share = min(max(2.0 * (bridge - (start - out)) / bridge, 0.0), 1.0)
+                        grown = out + share * (end - out)
+                        if grown > out + 1e-12:
+                            out = grown
+                            grew = True
+            above = empty
+            for i in range(offsets[k], offsets[k + 1] + inner.shape[0]):
+                start, end = _interval(i, k, a, offsets, front, outside, radii, cos, sin,
+                                       inner, outer)
+                if start == start and start > out + bridge and start < above:
+                    above = start
+            reach[k, a] = out
+            ceiling[k, a] = above
+
+
+@helper
+def _interval(i, k, a, offsets, front, outside, radii, cos, sin, inner, outer):
+    """Where the i-th thing at level k (a bone's circle, counted from ``offsets[k]``; then
+    the muscles) begins and ends along the ray at angle a; NaN where the ray misses it."""
+    if i < offsets[k + 1]:
+        facing = front[i] * cos[a] + outside[i] * sin[a]
+        spread = facing * facing - front[i] * front[i] - outside[i] * outside[i] \
+            + radii[i] * radii[i]
+        if spread <= 0.0 or facing + np.sqrt(spread) <= 0.0:
+            return np.nan, np.nan
+        return max(facing - np.sqrt(spread), 0.0), facing + np.sqrt(spread)
+    m = i - offsets[k + 1]
+    return inner[m, k, a], outer[m, k, a]
+
+
+def prepare() -> None:
+    """Compile, or load from numba's cache, this module's kernels, on arrays of the kinds
+    a pose passes them (``engine/coldstart.py``)."""
+    levels, angles, vertices = 1, ANGLES, SOLVED
+    reach, ceiling = np.zeros((levels, angles)), np.zeros((levels, angles))
+    one = np.zeros(1)
+    _sweep(np.zeros(levels + 1, dtype=np.int64), one, one, one, np.zeros(angles),
+           np.zeros(angles), np.zeros((0, levels, angles)), np.zeros((0, levels, angles)),
+           BRIDGE, OPEN, reach, ceiling)
+    _solve(reach, ceiling, 0.0, 1.0, GAP, np.full(1, np.nan), one, one,
+           np.zeros((1, vertices)), np.zeros(vertices), np.zeros(1), np.ones(1), np.zeros(1),
+           np.empty((3, vertices)))
+
+
+def fill(segments: int) -> float:
+    """The share of a circle's area that the regular polygon of ``segments`` vertices on it
+    covers."""
+    return segments * math.sin(2.0 * math.pi / segments) / (2.0 * math.pi)
+
+
+def lay(name: str, muscle: Muscle, route: np.ndarray, lie: Lie, ground: Ground,
+        segments: int, round_ends: tuple[bool, bool] = (True, True)) -> Laid:
+    """The muscle ``name`` laid along ``route`` (m, 3), the line of its path from origin to
+    insertion, on ``ground``, lying as ``lie`` says, with ``segments`` vertices a section;
+    the ground then holds it too. An end of ``round_ends`` (origin, insertion) that is
+    True ends in ``END`` cm of round sections on the path (a tendon held on a point of a
+    bone off the humerus); else it may end on the ground round the humerus."""
+    humerus = ground.humerus
+    along = distances_along(route)
+    places = shares(SECTIONS) * muscle.length
+    areas = np.pi * section_radii(muscle.radii, SECTIONS) ** 2
+    # A wrap's arc is drawn as chords, a hair short of the path's length: each place is the
+    # same share of either.
+    on_route = places * (along[-1] / muscle.length)
+    points, ahead = _on_line(route, along, on_route)
+    first, last = _stretch(route, along, humerus.up, on_route, areas, lie.lowest)
+    # The tendons' last centimetre either end keeps to the path, so that each ends on its
+    # point of the bone.
+    first = max(first, END) if round_ends[0] else first
+    last = min(last, along[-1] - END) if round_ends[1] else last
+    sliced = (on_route >= first) & (on_route <= last) if last > first else \
+        np.zeros(SECTIONS, dtype=bool)
+    rings = np.empty((SECTIONS, segments, 3))
+    middle = math.radians(0.5 * (lie.side[0] + lie.side[1]))
+    outward = humerus.ray(middle)
+    round_ = ~sliced
+    # Past the stretch, towards the insertion, the tendon keeps to its lane across the
+    # elbow (along the hinge, square to the bends round it, so its volume is kept).
+    lane = np.where(on_route > last, lie.lane, 0.0)[:, None] * HINGE
+    rings[round_] = _circles((points + lane)[round_], ahead[round_], outward,
+                             np.sqrt(areas[round_] / (np.pi * fill(segments))), segments)
+    heights = np.empty(0)
+    inner = outer = np.empty((0, ANGLES))
+    windows = np.empty((0, 3))
+    if sliced.any():
+        ends, _ = _on_line(route, along, np.array([first, last]))
+        top, bottom = ends @ humerus.up
+        share = (on_route[sliced] - first) / (last - first)
+        heights = top + share * (bottom - top)
+        slice_areas = areas[sliced] * (last - first) / (top - bottom)
+        # Each slice lies on its muscle's side; near either end of the stretch it turns to
+        # the side the path is on there and into a circle about the path, so that the
+        # slices meet the sections on the path.
+        sides = np.radians(lie.side[0] + share * (lie.side[1] - lie.side[0]))
+        _, _, entry = humerus.polar(ends)
+        nearness = np.zeros(len(heights))
+        joins = (on_route[0] < first, on_route[-1] > last)  # round sections beyond the end
+        for end, distance, joined in ((entry[0], top - heights, joins[0]),
+                                      (entry[1], heights - bottom, joins[1])):
+            weight = np.clip(distance / BLEND, 0.0, 1.0)
+            weight = weight * weight * (3.0 - 2.0 * weight)  # 0 at the end, 1 from BLEND on
+            sides = sides + (1.0 - weight) * np.angle(np.exp(1j * (end - sides)))
+            if joined:
+                nearness = np.maximum(nearness, 1.0 - weight)
+        merged = np.clip((lie.merge_below - heights) / MERGE, 0.0, 1.0)
+        peaks = lie.wall * merged * merged * (3.0 - 2.0 * merged)
+        shells, inner, outer, windows = _shells(heights, slice_areas, sides, peaks, lie,
+                                                ground, segments)
+        lanes = np.where(share > 0.5, lie.lane, 0.0)[:, None] * HINGE
+        on_path = points[sliced] + lanes
+        on_path = on_path + (heights - on_path @ humerus.up)[:, None] * humerus.up
+        circles = _circles(on_path, np.tile(-humerus.up, (len(heights), 1)),
+                           humerus.ray(sides), np.sqrt(slice_areas / (np.pi * fill(segments))),
+                           segments)
+        mixed = (1.0 - nearness)[:, None, None] * shells + nearness[:, None, None] * circles
+        rings[sliced] = _with_area(mixed, slice_areas, humerus.up)
+        # The muscles laid after lie on its slices, not on the ends that turn to the path.
+        inner = np.where(nearness[:, None] < 0.5, inner, np.nan)
+        outer = np.where(nearness[:, None] < 0.5, outer, np.nan)
+    laid = Laid(rings, places, heights, inner, outer, windows)
+    ground.add(name, laid)
+    return laid
+
+
+def _stretch(route: np.ndarray, along: np.ndarray, up: np.ndarray, on_route: np.ndarray,
+             areas: np.ndarray, lowest: float) -> tuple[float, float]:
+    """Where along ``route`` (m, 3) (its distances ``along`` (m,)) the run of its segments
+    that lean less than ``STEEPEST`` from straight down the humerus begins and ends, down
+    to the height ``lowest`` at most: the run that holds the muscle's thickest section (at
+    ``on_route`` (k,) with ``areas`` (k,)), or the longest run; (0, 0) if there is none."""
+    steps = np.diff(route, axis=0)
+    lengths = np.diff(along)
+    drop = -(steps @ up)
+    steep = (lengths > 0.0) & (drop >= lengths * math.cos(STEEPEST))
+    runs, begin = [], None
+    for index, flag in enumerate(np.append(steep, False)):
+        if flag and begin is None:
+            begin = index
+        elif not flag and begin is not None:
+            runs.append((float(along[begin]), float(along[index])))
+            begin = None
+    # A run descends, so it crosses the lowest height once at most.
+    heights = route @ up
+    runs = [(first, min(last, float(np.interp(-lowest, -heights[(along >= first) & (along <= last)],
+                                                along[(along >= first) & (along <= last)]))))
+            for first, last in runs]
+    runs = [(first, last) for first, last in runs if last > first]
+    if not runs:
+        return 0.0, 0.0
+    thickest = on_route[int(np.argmax(areas))]
+    for first, last in runs:
+        if first <= thickest <= last:
+            return first, last
+    return max(runs, key=lambda run: run[1] - run[0])
+
+
+def _on_line(points: np.ndarray, along: np.ndarray, wanted: np.ndarray):
+    """The places (k, 3) at distances ``wanted`` (k,) along the line through ``points``
+    (m, 3), whose distances are ``along`` (m,), and the line's unit direction there."""
+    steps = np.diff(points, axis=0)
+    lengths = np.diff(along)
+    keep = np.flatnonzero(lengths > 0.0)
+    segment = keep[np.clip(np.searchsorted(along[keep], wanted, side="right") - 1, 0,
+                           len(keep) - 1)]
+    share = np.clip((wanted - along[segment]) / lengths[segment], 0.0, 1.0)
+    places = points[segment] + share[:, None] * steps[segment]
+    return places, steps[segment] / lengths[segment, None]
+
+
+def _circles(centres: np.ndarray, ahead: np.ndarray, outward: np.ndarray,
+             radii: np.ndarray, segments: int) -> np.ndarray:
+    """(k, segments, 3) the regular polygons of ``radii`` (k,) about ``centres`` (k, 3),
+    square to the unit ``ahead`` (k, 3), vertex 0 towards ``outward`` ((3,) or (k, 3))."""
+    outward = np.broadcast_to(outward, ahead.shape)
+    first = outward - np.einsum("kc,kc->k", outward, ahead)[:, None] * ahead
+    first /= np.linalg.norm(first, axis=1, keepdims=True)
+    second = np.cross(ahead, first)
+    theta = 2.0 * np.pi * np.arange(segments) / segments
+    spokes = (np.cos(theta)[None, :, None] * first[:, None, :]
+              + np.sin(theta)[None, :, None] * second[:, None, :])
+    return centres[:, None, :] + radii[:, None, None] * spokes
+
+
+def _profile(across: np.ndarray, peaks: np.ndarray) -> np.ndarray:
+    """How thick a slice is across its window, as a share of its thickness: at ``across``
+    ((s,) for every slice, or (k, s)) from -1 to 1, for slices (k,) thickest at ``peaks``
+    (k,) (0: the middle, a half ellipse; 1 or -1: that edge, a quarter ellipse standing on
+    it): (k, s)."""
+    offset = np.atleast_2d(across) - peaks[:, None]
+    reach = np.where(offset > 0.0, 1.0 - peaks[:, None], 1.0 + peaks[:, None])
+    ratio = np.divide(offset, reach, out=np.zeros_like(offset), where=reach > 0.0)
+    return np.sqrt(np.clip(1.0 - ratio**2, 0.0, 1.0))
+
+
+def _shells(heights, areas, sides, peaks, lie: Lie, ground: Ground, segments: int):
+    """The slices at ``heights`` (k,) of ``areas`` (k,) cm^2, laid on ``ground`` about the
+    angles ``sides`` (k,), thickest at ``peaks`` (k,) across them (see `_profile`): their
+    vertices (k, segments, 3), their inner and outer radii round the humerus (k, ANGLES)
+    and windows (k, 3), as `Laid` keeps them.
+
+    A slice's window is as wide as the muscle's flatness asks for its area (a half-ellipse
+    of width w and thickness T has area pi w T / 4), up to its spread, and its thickness
+    is solved for the area. A muscle that makes one belly with the one it lies beside
+    takes that one's thickness at the edge they share, and its width is solved instead.
+    """
+    under, ceiling = ground.under(heights)
+    # Solved at a fixed number of vertices, so that where a slice lies does not depend on
+    # how finely it is drawn (nor, then, where the muscles laid on it lie).
+    theta = 2.0 * np.pi * np.arange(SOLVED) / SOLVED
+    across = np.sin(theta)
+    rise = np.where(np.cos(theta) >= 0.0, _profile(across, peaks), 0.0)  # (k, SOLVED)
+    grid = ground._phi
+    # A slice thickest at an edge is half of a belly it shares: half as wide for its area;
+    # a tendon's is round (a belly's flatness comes in as its sections grow to ROUND).
+    aspect = ((1.0 + (lie.aspect - 1.0) * np.minimum(areas / ROUND, 1.0))
+              * (1.0 - 0.5 * np.abs(peaks)))
+    natural = np.sqrt(4.0 * areas / (math.pi * aspect))
+    base = np.maximum(_at_angles(under, grid, sides[:, None])[:, 0], NEAREST)
+    # Its width measured halfway up the slice: a slice widens outwards round the humerus.
+    half = np.minimum(aspect * natural / (2.0 * base + natural), math.radians(lie.spread))
+    sides = sides - peaks * half  # a wall stands at the side
+
+    fixed = np.full(len(areas), np.nan)  # where a slice's edge stands against another's
+    way = np.zeros(len(areas))
+    thickness = np.zeros(len(areas))
+    if lie.beside is not None:
+        neighbour = ground.window(lie.beside, heights)
+        way = np.sign(np.angle(np.exp(1j * (sides - np.nan_to_num(neighbour[:, 0])))))
+        edge = neighbour[:, 0] + way * neighbour[:, 1]
+        # Beside a neighbour thick enough to stand against, on the ground without it: its
+        # edge is this slice's. Where it thins (towards its ends) the slice turns back to
+        # its own side, gradually, so that no section jumps as the muscles slide.
+        standing = np.clip((np.nan_to_num(neighbour[:, 2]) - STAND[0]) / (STAND[1] - STAND[0]),
+                           0.0, 1.0)
+        own_edge = sides - way * half
+        edge = own_edge + standing * np.angle(np.exp(1j * (np.nan_to_num(edge) - own_edge)))
+        sides = edge + way * half
+        apart, apart_ceiling = ground.under(heights, lie.beside)
+        beside = standing > 0.0
+        under = np.where(beside[:, None], apart, under)
+        ceiling = np.where(beside[:, None], apart_ceiling, ceiling)
+        # Where the two make one belly: this one as thick as that one at the edge they
+        # share, its width solved.
+        merging = np.abs(peaks) * standing
+        thickness = merging * np.nan_to_num(neighbour[:, 2]) + (1.0 - merging) * natural
+        fixed = np.where(peaks != 0.0, edge, np.nan)
+    _solve(np.ascontiguousarray(under), np.ascontiguousarray(ceiling), grid[0],
+           2.0 * np.pi / ANGLES, GAP, fixed, way, areas, rise, across, sides, half, thickness,
+           np.empty((3, SOLVED)))
+    theta = 2.0 * np.pi * np.arange(segments) / segments
+    across = np.sin(theta)
+    rise = np.where(np.cos(theta) >= 0.0, _profile(across, peaks), 0.0)  # (k, segments)
+    phi = sides[:, None] + half[:, None] * across[None, :]
+    floor = _at_angles(under, grid, phi) + GAP
+    room = np.maximum(_at_angles(ceiling, grid, phi) - GAP - floor, 0.0)
+    radius = floor + np.minimum(thickness[:, None] * rise, room)
+    humerus = ground.humerus
+    vertices = heights[:, None, None] * humerus.up + radius[..., None] * humerus.ray(phi)
+    # Kept round the humerus for the muscles laid after: what the slice covers.
+    offsets = np.angle(np.exp(1j * (grid[None, :] - sides[:, None]))) / half[:, None]
+    inside = np.abs(offsets) <= 1.0
+    depth = _profile(offsets, peaks)
+    bottom = under + GAP
+    top = bottom + np.minimum(thickness[:, None] * depth, np.maximum(ceiling - GAP - bottom, 0.0))
+    return (vertices, np.where(inside, bottom, np.nan), np.where(inside, top, np.nan),
+            np.column_stack([sides, half, thickness]))
+
+
+@ngjit
+def _solve(under, ceiling, start, step, gap, fixed, way, areas, rise, across, sides, half,
+           thickness, scratch):
+    """Each slice k's window and thickness, solved for its area ``areas[k]``, in place in
+    ``sides``, ``half`` and ``thickness`` (k,). Its polygon's vertex j is at the angle
+    ``sides[k] + half[k] across[j]`` round the humerus, ``gap`` out from ``under`` and up
+    by ``thickness[k] rise[k, j]`` but no nearer than ``gap`` to ``ceiling`` ((k, A) each,
+    on angles from ``start`` by ``step``). Where ``fixed[k]`` is a number, the slice's
+    edge stands there (its side then ``fixed + way half``) and its thickness is given: its
+    half-width is solved, by bisection from 0.01 to nearly pi. Otherwise, or if no width
+    is enough, its thickness is, from 0 to 30 cm, its window widened by 1.4 while even
+    that is too little (eight times at most). ``scratch``: (3, s) room to work in."""
+    count, vertices = rise.shape
+    floor, room, turn = scratch[0], scratch[1], scratch[2]
+    for k in range(count):
+        if fixed[k] == fixed[k]:
+            low, high = 0.01, np.pi - 0.05
+            if _area(under[k], ceiling[k], start, step, gap, fixed[k] + way[k] * high, high,
+                     thickness[k], rise[k], across) >= areas[k]:
+                for _ in range(BISECTIONS):
+                    middle = 0.5 * (low + high)
+                    if _area(under[k], ceiling[k], start, step, gap, fixed[k] + way[k] * middle,
+                             middle, thickness[k], rise[k], across) >= areas[k]:
+                        high = middle
+                    else:
+                        low = middle
+                half[k] = high
+                sides[k] = fixed[k] + way[k] * high
+                continue
+        for _ in range(8):
+            for j in range(vertices):  # the polygon's angles stay while its thickness is sought
+                phi = sides[k] + half[k] * across[j]
+                floor[j] = _interpolated(under[k], start, step, phi) + gap
+                room[j] = max(_interpolated(ceiling[k], start, step, phi) - gap - floor[j], 0.0)
+                turn[j] = np.sin(half[k] * (across[(j + 1) % vertices] - across[j]))
+            if _fixed_area(floor, room, turn, rise[k], 30.0) >= areas[k]:
+                low, high = 0.0, 30.0
+                for _ in range(BISECTIONS):
+                    middle = 0.5 * (low + high)
+                    if _fixed_area(floor, room, turn, rise[k], middle) >= areas[k]:
+                        high = middle
+                    else:
+                        low = middle
+                thickness[k] = high
+                break
+            half[k] = min(half[k] * 1.4, np.pi - 0.05)
+
+
+@helper
+def _fixed_area(floor, room, turn, rise, thickness):
+    """The area of a slice's polygon whose vertices' angles are set: radii ``floor`` up by
+    ``thickness rise`` but no more than ``room``, each turning by the sine ``turn`` to the
+    next (all (s,))."""
+    vertices = floor.shape[0]
+    total = 0.0
+    for j in range(vertices):
+        following = (j + 1) % vertices
+        total += ((floor[j] + min(thickness * rise[j], room[j]))
+                  * (floor[following] + min(thickness * rise[following], room[following]))
+                  * turn[j])
+    return 0.5 * total
+
+
+@helper
+def _area(under, ceiling, start, step, gap, side, half, thickness, rise, across):
+    """The area of a slice's polygon (see `_solve`): the shoelace of its vertices given in
+    angles and radii round the humerus."""
+    vertices = rise.shape[0]
+    total = 0.0
+    first_phi = first_radius = last_phi = last_radius = 0.0
+    for j in range(vertices):
+        phi = side + half * across[j]
+        floor = _interpolated(under, start, step, phi) + gap
+        room = max(_interpolated(ceiling, start, step, phi) - gap - floor, 0.0)
+        radius = floor + min(thickness * rise[j], room)
+        if j == 0:
+            first_phi, first_radius = phi, radius
+        else:
+            total += last_radius * radius * np.sin(phi - last_phi)
+        last_phi, last_radius = phi, radius
+    total += last_radius * first_radius * np.sin(first_phi - last_phi)
+    return 0.5 * total
+
+
+@helper
+def _interpolated(values, start, step, phi):
+    """``values`` (A,) on the periodic angles from ``start`` by ``step``, at ``phi``."""
+    count = values.shape[0]
+    position = (phi - start) / step
+    below = np.floor(position)
+    share = position - below
+    index = int(below) % count
+    return (1.0 - share) * values[index] + share * values[(index + 1) % count]
+
+
+def _at_angles(values: np.ndarray, grid: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """``values`` (k, ANGLES) on the periodic ``grid`` of angles, at angles ``phi`` (k, s)."""
+    step = 2.0 * np.pi / ANGLES
+    position = (phi - grid[0]) / step
+    below = np.floor(position).astype(int)
+    share = position - below
+    rows = np.arange(len(values))[:, None]
+    left = values[rows, below % ANGLES]
+    right = values[rows, (below + 1) % ANGLES]
+    return (1.0 - share) * left + share * right
+
+
+def _with_area(rings: np.ndarray, areas: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """``rings`` (k, segments, 3), each a polygon in a plane square to ``normal`` (3,),
+    scaled about its centroid to have its area of ``areas`` (k,)."""
+    first = np.cross(normal, [0.0, 0.0, 1.0])
+    first /= np.linalg.norm(first)
+    second = np.cross(normal, first)
+    x, y = rings @ first, rings @ second
+    cross = x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y
+    area = 0.5 * np.abs(np.sum(cross, axis=1))
+    cx = np.sum((x + np.roll(x, -1, axis=1)) * cross, axis=1) / (6.0 * np.sum(cross, axis=1) / 2.0)
+    cy = np.sum((y + np.roll(y, -1, axis=1)) * cross, axis=1) / (6.0 * np.sum(cross, axis=1) / 2.0)
+    level = (rings @ normal).mean(axis=1)
+    centroid = (cx[:, None] * first + cy[:, None] * second + level[:, None] * normal)
+    scale = np.sqrt(areas / area)
+    return centroid[:, None, :] + scale[:, None, None] * (rings - centroid[:, None, :])
+
+
+def muscle_mesh(laid: Laid, closed: bool) -> Mesh:
+    """The laid muscle's closed surface: its sections joined, closed at each end by a
+    dome of the end section (a hemisphere on a round end, ``closed``) or a flat cap."""
+    rings = laid.rings
+    segments = rings.shape[1]
+    ends = []
+    for index, inward in ((0, 1), (-1, -2)):
+        ring = rings[index]
+        centre = ring.mean(axis=0)
+        outward = centre - rings[inward].mean(axis=0)
+        outward /= np.linalg.norm(outward)
+        # A dome as high as a circle of the end section's area is wide, so a round end's
+        # holds the cap's (2/3) pi r^3.
+        radius = np.sqrt(_plane_area(ring) / np.pi)
+        if closed:
+            lat = np.linspace(0.0, 0.5 * np.pi, CAP_RINGS + 1)[1:-1]
+            dome = (centre + np.cos(lat)[:, None, None] * (ring - centre)
+                    + (radius * np.sin(lat))[:, None, None] * outward)
+            pole = centre + radius * outward
+        else:
+            dome = np.empty((0, segments, 3))
+            pole = centre
+        ends.append((dome, pole, outward))
+    (start_dome, start_pole, start_out), (end_dome, end_pole, end_out) = ends
+    grid = np.concatenate([start_dome[::-1], rings, end_dome])
+    vertices = np.concatenate([start_pole[None], grid.reshape(-1, 3), end_pole[None]])
+    # Normals from the grid: across each ring (counter-clockwise about the way the muscle
+    # runs) crossed with along it, pointing out.
+    padded = np.concatenate([np.broadcast_to(start_pole, (1, segments, 3)), grid,
+                             np.broadcast_to(end_pole, (1, segments, 3))])
+    along = padded[2:] - padded[:-2]
+    around = np.roll(grid, -1, axis=1) - np.roll(grid, 1, axis=1)
+    normals = np.cross(around, along)
+    normals /= np.maximum(np.linalg.norm(normals, axis=2, keepdims=True), 1e-300)
+    normals = np.concatenate([start_out[None], normals.reshape(-1, 3), end_out[None]])
+    return Mesh(vertices, normals, _closed_tube(len(grid), segments))
+
+
+def _plane_area(ring: np.ndarray) -> float:
+    """The area of the plane polygon ``ring`` (s, 3)."""
+    centre = ring.mean(axis=0)
+    return 0.5 * float(np.linalg.norm(np.cross(ring - centre, np.roll(ring, -1, axis=0) - centre)
+                                      .sum(axis=0)))
+
+
+def tendon_shares(laid: Laid, muscle: Muscle, segments: int) -> np.ndarray:
+    """How much each vertex of the laid muscle's mesh (`muscle_mesh`) is tendon: (n,)
+    float32 in [0, 1], 1 on the nodes that do not grow, 0 where a node grows at least half
+    as much as the most growing one, linear between nodes."""
+    growth = muscle.growth
+    share = 1.0 - np.clip(growth / (0.5 * growth.max()), 0.0, 1.0)
+    nodes = laid.places / muscle.length * (len(growth) - 1)
+    rings = np.interp(nodes, np.arange(len(growth)), share)
+    caps = CAP_RINGS - 1
+    per_ring = np.concatenate([np.full(caps, rings[0]), rings, np.full(caps, rings[-1])])
+    return np.concatenate([[rings[0]], np.repeat(per_ring, segments),
+                           [rings[-1]]]).astype(np.float32)
