@@ -14,9 +14,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from biceps.engine.bones import bone_meshes, bone_spheres
-from biceps.engine.layers import Ground, Humerus, Lie, lay
-from biceps.engine.layers import muscle_mesh as layered_mesh
-from biceps.engine.layers import tendon_shares as layered_tendons
+from biceps.engine.lies import Lie
 from biceps.engine.mesh import Mesh, bent_muscle_mesh, muscle_mesh
 from biceps.engine.muscle import Muscle
 from biceps.engine.packing import arm_leans, centreline, laid_offsets, laying_order
@@ -25,6 +23,7 @@ from biceps.engine.stations import section_radii
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
+    from biceps.engine.layers import Humerus
 
 BONES = ("scapula", "humerus", "radius", "ulna")
 PARTS = ("muscle", *BONES)
@@ -64,6 +63,11 @@ def parts_and_tendons(arm: Arm, segments: int, hidden: frozenset[str] = frozense
 def _layered_parts(arm: Arm, segments: int, hidden: frozenset[str],
                    companion_segments: int | None):
     from biceps.engine.arm26 import BONES, LIES  # arm26's paths build on this package
+    # The layers' kernels are numba's: imported only here, so that the simple skeleton's
+    # mesh (export-mesh of the single biceps) imports no numba.
+    from biceps.engine.layers import Ground, Humerus, lay
+    from biceps.engine.layers import muscle_mesh as layered_mesh
+    from biceps.engine.layers import tendon_shares as layered_tendons
 
     pose, skeleton = arm.pose, arm.skeleton
     ground = Ground(Humerus(skeleton.shoulder), *bone_spheres(skeleton, pose))

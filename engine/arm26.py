@@ -24,7 +24,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from biceps.engine.layers import Lie
+from biceps.engine.lies import Lie
 from biceps.engine.path import PathWrap, ViaPath
 from biceps.engine.skeleton import Attachment
 from biceps.engine.wrapping import Cylinder, Ellipsoid, Surface
