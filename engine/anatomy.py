@@ -70,7 +70,7 @@ def _layered_parts(arm: Arm, segments: int, hidden: frozenset[str],
     from biceps.engine.layers import tendon_shares as layered_tendons
 
     pose, skeleton = arm.pose, arm.skeleton
-    ground = Ground(Humerus(skeleton.shoulder), *bone_spheres(skeleton, pose))
+    ground = Ground(Humerus(skeleton.shoulder), *bone_spheres(skeleton, pose), len(arm.names))
     names, muscles, paths = arm.names, arm.muscles, arm.paths
     parts, tendons = {}, {}
     for index in laying_order(arm):

@@ -65,7 +65,8 @@ ROUND = 3.0  # cm^2: a slice this large or larger is as flat as its muscle's asp
 STAND = (0.4, 1.2)  # cm: from this thick to this, a muscle comes to be one to lie beside
 TAPER = 0.5  # cm past a muscle's end slices over which its window thins to nothing
 SOLVED = 64  # vertices of the polygon a slice's thickness and width are solved on
-BISECTIONS = 36  # halvings of a slice's thickness or width: to 30 cm / 2^36, 4e-10 cm
+TOLERANCE = 4e-10  # cm or radians: how closely a slice's thickness or width is solved
+CLOSE = 1e-13  # of a slice's area: near enough to stop solving
 SECTIONS = 97
 """Sections of a muscle from origin to insertion, the same at every pose, so that its mesh
 keeps its shape of arrays (about every 4 mm of the biceps)."""
@@ -115,17 +116,40 @@ class Laid:
 
 class Ground:
     """What lies round the humerus as the muscles are laid on it: the bones, as spheres
-    (centres (n, 3), radii (n,), world space), and each muscle's slices."""
+    (centres (n, 3), radii (n,), world space), and each of up to ``muscles`` muscles'
+    slices."""
 
-    def __init__(self, humerus: Humerus, centres: np.ndarray, radii: np.ndarray):
+    def __init__(self, humerus: Humerus, centres: np.ndarray, radii: np.ndarray,
+                 muscles: int):
         self.humerus = humerus
-        self.centres, self.radii = centres, radii
+        self.radii = radii
+        # The spheres' centres as height up the humerus, and distance towards its front and
+        # its outside (n,) each, the frame `under` works in.
+        self._spheres = np.ascontiguousarray(
+            np.stack([centres @ humerus.up, centres @ humerus.front, centres @ humerus.outside]))
         self.laid: dict[str, Laid] = {}
         self._phi = np.linspace(-np.pi, np.pi, ANGLES, endpoint=False)
-        self._rays = humerus.ray(self._phi)  # (ANGLES, 3)
+        self._cos, self._sin = np.cos(self._phi), np.sin(self._phi)
+        # The laid muscles with two slices or more, packed for `_sweep`: their names, where
+        # each one's slices start (m + 1,), and the slices by height: heights, inner and
+        # outer radii (room for ``muscles`` muscles' slices, rows up to ``_starts[-1]`` used).
+        self._names: list[str] = []
+        self._starts = [0]
+        self._heights = np.empty(muscles * SECTIONS)
+        self._inner = np.empty((muscles * SECTIONS, ANGLES))
+        self._outer = np.empty((muscles * SECTIONS, ANGLES))
 
     def add(self, name: str, laid: Laid) -> None:
         self.laid[name] = laid
+        if len(laid.heights) < 2:
+            return
+        order = np.argsort(laid.heights)
+        start, end = self._starts[-1], self._starts[-1] + len(order)
+        self._names.append(name)
+        self._starts.append(end)
+        self._heights[start:end] = laid.heights[order]
+        self._inner[start:end] = laid.inner[order]
+        self._outer[start:end] = laid.outer[order]
 
     def under(self, levels: np.ndarray, besides: str | None = None
               ) -> tuple[np.ndarray, np.ndarray]:
@@ -134,48 +158,15 @@ class Ground:
         it, joined across gaps under ``BRIDGE``; the muscle ``besides`` left out, which a
         slice stands beside), and where the next thing out begins (``OPEN`` if nothing
         does): (k, ANGLES) each."""
-        offsets, front, outside, radii = self._bone_circles(levels)
-        laid = [self._muscle(laid, levels) for name, laid in self.laid.items()
-                if name != besides]
-        inner = (np.stack([inner for inner, _ in laid]) if laid
-                 else np.empty((0, len(levels), ANGLES)))
-        outer = np.stack([outer for _, outer in laid]) if laid else inner
+        levels = np.ascontiguousarray(levels, dtype=np.float64)
+        used = np.array([name != besides for name in self._names], dtype=np.bool_)
         reach = np.empty((len(levels), ANGLES))
         ceiling = np.empty((len(levels), ANGLES))
-        _sweep(offsets, front, outside, radii, np.cos(self._phi), np.sin(self._phi), inner,
-               outer, BRIDGE, OPEN, reach, ceiling)
+        things = len(self.radii) + len(self._names)
+        _sweep(levels, self._spheres, self.radii, np.array(self._starts), used, self._heights,
+               self._inner, self._outer, self._cos, self._sin, BRIDGE, OPEN, reach, ceiling,
+               np.empty((3, things)), np.empty((2, things)))
         return reach, ceiling
-
-    def _bone_circles(self, levels: np.ndarray):
-        """The circles in which the bone spheres cut the levels' planes: by level, level
-        k's from ``offsets[k]`` to ``offsets[k + 1]`` (k + 1,); their centres' distances
-        from the humerus's axis towards its front and its outside (p,) each, and their
-        radii (p,)."""
-        humerus = self.humerus
-        heights = self.centres @ humerus.up
-        above = heights[:, None] - levels[None, :]  # (n, k)
-        level, spheres = np.nonzero((np.abs(above) < self.radii[:, None]).T)  # by level
-        offsets = np.concatenate([[0], np.cumsum(np.bincount(level, minlength=len(levels)))])
-        centres = self.centres[spheres]
-        radii = np.sqrt(self.radii[spheres] ** 2 - above[spheres, level] ** 2)
-        return offsets, centres @ humerus.front, centres @ humerus.outside, radii
-
-    def _muscle(self, laid: Laid, levels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """A laid muscle's inner and outer radii at ``levels``, between its slices' (NaN
-        off its stretch): (k, ANGLES) each."""
-        if len(laid.heights) < 2:
-            nothing = np.full((len(levels), ANGLES), np.nan)
-            return nothing, nothing
-        order = np.argsort(laid.heights)
-        heights = laid.heights[order]
-        at = np.clip(np.searchsorted(heights, levels) - 1, 0, len(heights) - 2)
-        share = ((levels - heights[at]) / (heights[at + 1] - heights[at]))[:, None]
-        inside = ((levels >= heights[0]) & (levels <= heights[-1]))[:, None]
-        blended = []
-        for values in (laid.inner[order], laid.outer[order]):
-            value = (1.0 - share) * values[at] + share * values[at + 1]
-            blended.append(np.where(inside, value, np.nan))
-        return blended[0], blended[1]
 
     def window(self, name: str, levels: np.ndarray) -> np.ndarray:
         """Muscle ``name``'s slices' windows at ``levels`` (k, 3), as `Laid` keeps them (NaN
@@ -196,57 +187,99 @@ class Ground:
 
 
 @ngjit
-def _sweep(offsets, front, outside, radii, cos, sin, inner, outer, bridge, empty, reach,
-           ceiling):
+def _sweep(levels, spheres, radii, starts, used, heights, inner, outer, cos, sin, bridge,
+           empty, reach, ceiling, circles, intervals):
     """For each level k and angle a round the humerus: ``reach[k, a]``, how far out what
     lies on the humerus reaches, and ``ceiling[k, a]``, where the next thing out begins
-    (``empty`` if nothing does). What lies there: the bones' circles at level k (those
-    from ``offsets[k]`` to ``offsets[k + 1]``, centred ``front`` and ``outside`` of the
-    axis, of ``radii``), met by the ray at the angle whose cosine and sine are ``cos[a]``
-    and ``sin[a]``; and the muscles, from ``inner`` to ``outer`` (m, k, A), NaN where there
-    is none. The reach grows from the axis by everything that begins near it: wholly if it
-    begins within ``bridge / 2`` of it, less and less as the gap grows to ``bridge`` (so
-    that the reach changes smoothly as things move), not at all beyond; the first thing
-    further out than that is the ceiling."""
-    levels, angles = reach.shape
-    for k in range(levels):
+    (``empty`` if nothing does). What lies there: the circles in which the bones' spheres
+    (heights up the humerus's axis, distances towards its front and its outside (3, n);
+    ``radii`` (n,)) cut the plane at height ``levels[k]``, met by the ray at the angle whose
+    cosine and sine are ``cos[a]`` and ``sin[a]``; and the muscles m that are ``used``,
+    whose slices, from ``starts[m]`` to ``starts[m + 1]``, lie at ``heights`` (s,) from
+    ``inner`` to ``outer`` (s, A) (NaN where there is none), taken between the slices either
+    side of the level. The reach grows from the axis by everything that begins near it:
+    wholly if it begins within ``bridge / 2`` of it, less and less as the gap grows to
+    ``bridge`` (so that the reach changes smoothly as things move), not at all beyond; the
+    first thing further out than that is the ceiling. ``circles`` (3, n + m) and
+    ``intervals`` (2, n + m): room to work in."""
+    count, angles = reach.shape
+    for k in range(count):
+        level = levels[k]
+        cut = 0  # the bones' circles at this level
+        for j in range(radii.shape[0]):
+            above = spheres[0, j] - level
+            if abs(above) < radii[j]:
+                circles[0, cut] = spheres[1, j]
+                circles[1, cut] = spheres[2, j]
+                circles[2, cut] = np.sqrt(radii[j] * radii[j] - above * above)
+                cut += 1
+        # A circle inside another adds nothing along any ray from the axis: most of the
+        # humerus's, which overlap along it.
+        kept = 0
+        for i in range(cut):
+            inside = False
+            for j in range(cut):
+                if j != i:
+                    apart = np.hypot(circles[0, i] - circles[0, j], circles[1, i] - circles[1, j])
+                    if apart + circles[2, i] < circles[2, j] or (
+                            apart + circles[2, i] == circles[2, j] and j < i):
+                        inside = True
+                        break
+            if not inside:
+                circles[0, kept], circles[1, kept] = circles[0, i], circles[1, i]
+                circles[2, kept] = circles[2, i]
+                kept += 1
+        cut = kept
         for a in range(angles):
+            things = 0
+            for i in range(cut):
+                front, outside, radius = circles[0, i], circles[1, i], circles[2, i]
+                facing = front * cos[a] + outside * sin[a]
+                spread = facing * facing - front * front - outside * outside + radius * radius
+                if spread > 0.0 and facing + np.sqrt(spread) > 0.0:
+                    intervals[0, things] = max(facing - np.sqrt(spread), 0.0)
+                    intervals[1, things] = facing + np.sqrt(spread)
+                    things += 1
+            for m in range(used.shape[0]):
+                first, last = starts[m], starts[m + 1] - 1
+                if not used[m] or level < heights[first] or level > heights[last]:
+                    continue
+                below = first + np.searchsorted(heights[first:last + 1], level) - 1
+                below = min(max(below, first), last - 1)
+                share = (level - heights[below]) / (heights[below + 1] - heights[below])
+                start = (1.0 - share) * inner[below, a] + share * inner[below + 1, a]
+                if start == start:
+                    intervals[0, things] = start
+                    intervals[1, things] = (1.0 - share) * outer[below, a] \
+                        + share * outer[below + 1, a]
+                    things += 1
+            # Nearest first, so that the reach grows in one pass or two.
+            for i in range(1, things):
+                start, end = intervals[0, i], intervals[1, i]
+                j = i
+                while j > 0 and intervals[0, j - 1] > start:
+                    intervals[0, j], intervals[1, j] = intervals[0, j - 1], intervals[1, j - 1]
+                    j -= 1
+                intervals[0, j], intervals[1, j] = start, end
             out = 0.0
             grew = True
             while grew:
                 grew = False
-                for i in range(offsets[k], offsets[k + 1] + inner.shape[0]):
-                    start, end = _interval(i, k, a, offsets, front, outside, radii, cos, sin,
-                                           inner, outer)
-                    if start == start and end > out:
+                for i in range(things):
+                    start, end = intervals[0, i], intervals[1, i]
+                    if end > out:
                         share = min(max(2.0 * (bridge - (start - out)) / bridge, 0.0), 1.0)
                         grown = out + share * (end - out)
                         if grown > out + 1e-12:
                             out = grown
                             grew = True
             above = empty
-            for i in range(offsets[k], offsets[k + 1] + inner.shape[0]):
-                start, end = _interval(i, k, a, offsets, front, outside, radii, cos, sin,
-                                       inner, outer)
-                if start == start and start > out + bridge and start < above:
+            for i in range(things):
+                start = intervals[0, i]
+                if start > out + bridge and start < above:
                     above = start
             reach[k, a] = out
             ceiling[k, a] = above
-
-
-@helper
-def _interval(i, k, a, offsets, front, outside, radii, cos, sin, inner, outer):
-    """Where the i-th thing at level k (a bone's circle, counted from ``offsets[k]``; then
-    the muscles) begins and ends along the ray at angle a; NaN where the ray misses it."""
-    if i < offsets[k + 1]:
-        facing = front[i] * cos[a] + outside[i] * sin[a]
-        spread = facing * facing - front[i] * front[i] - outside[i] * outside[i] \
-            + radii[i] * radii[i]
-        if spread <= 0.0 or facing + np.sqrt(spread) <= 0.0:
-            return np.nan, np.nan
-        return max(facing - np.sqrt(spread), 0.0), facing + np.sqrt(spread)
-    m = i - offsets[k + 1]
-    return inner[m, k, a], outer[m, k, a]
 
 
 def prepare() -> None:
@@ -255,9 +288,10 @@ def prepare() -> None:
     levels, angles, vertices = 1, ANGLES, SOLVED
     reach, ceiling = np.zeros((levels, angles)), np.zeros((levels, angles))
     one = np.zeros(1)
-    _sweep(np.zeros(levels + 1, dtype=np.int64), one, one, one, np.zeros(angles),
-           np.zeros(angles), np.zeros((0, levels, angles)), np.zeros((0, levels, angles)),
-           BRIDGE, OPEN, reach, ceiling)
+    _sweep(np.zeros(levels), np.zeros((3, 1)), one, np.zeros(2, dtype=np.int64),
+           np.ones(1, dtype=np.bool_), np.zeros(2), np.zeros((2, angles)),
+           np.zeros((2, angles)), np.zeros(angles), np.zeros(angles), BRIDGE, OPEN, reach,
+           ceiling, np.empty((3, 2)), np.empty((2, 2)))
     _solve(reach, ceiling, 0.0, 1.0, GAP, np.full(1, np.nan), one, one,
            np.zeros((1, vertices)), np.zeros(vertices), np.zeros(1), np.ones(1), np.zeros(1),
            np.empty((3, vertices)))
@@ -320,7 +354,7 @@ def lay(name: str, muscle: Muscle, route: np.ndarray, lie: Lie, ground: Ground,
                                       (entry[1], heights - bottom, joins[1])):
             weight = np.clip(distance / BLEND, 0.0, 1.0)
             weight = weight * weight * (3.0 - 2.0 * weight)  # 0 at the end, 1 from BLEND on
-            sides = sides + (1.0 - weight) * np.angle(np.exp(1j * (end - sides)))
+            sides = sides + (1.0 - weight) * _wrapped(end - sides)
             if joined:
                 nearness = np.maximum(nearness, 1.0 - weight)
         merged = np.clip((lie.merge_below - heights) / MERGE, 0.0, 1.0)
@@ -395,7 +429,7 @@ def _circles(centres: np.ndarray, ahead: np.ndarray, outward: np.ndarray,
     outward = np.broadcast_to(outward, ahead.shape)
     first = outward - np.einsum("kc,kc->k", outward, ahead)[:, None] * ahead
     first /= np.linalg.norm(first, axis=1, keepdims=True)
-    second = np.cross(ahead, first)
+    second = _cross(ahead, first)
     theta = 2.0 * np.pi * np.arange(segments) / segments
     spokes = (np.cos(theta)[None, :, None] * first[:, None, :]
               + np.sin(theta)[None, :, None] * second[:, None, :])
@@ -446,7 +480,7 @@ def _shells(heights, areas, sides, peaks, lie: Lie, ground: Ground, segments: in
     thickness = np.zeros(len(areas))
     if lie.beside is not None:
         neighbour = ground.window(lie.beside, heights)
-        way = np.sign(np.angle(np.exp(1j * (sides - np.nan_to_num(neighbour[:, 0])))))
+        way = np.sign(_wrapped(sides - np.nan_to_num(neighbour[:, 0])))
         edge = neighbour[:, 0] + way * neighbour[:, 1]
         # Beside a neighbour thick enough to stand against, on the ground without it: its
         # edge is this slice's. Where it thins (towards its ends) the slice turns back to
@@ -454,12 +488,10 @@ def _shells(heights, areas, sides, peaks, lie: Lie, ground: Ground, segments: in
         standing = np.clip((np.nan_to_num(neighbour[:, 2]) - STAND[0]) / (STAND[1] - STAND[0]),
                            0.0, 1.0)
         own_edge = sides - way * half
-        edge = own_edge + standing * np.angle(np.exp(1j * (np.nan_to_num(edge) - own_edge)))
+        edge = own_edge + standing * _wrapped(np.nan_to_num(edge) - own_edge)
         sides = edge + way * half
-        apart, apart_ceiling = ground.under(heights, lie.beside)
         beside = standing > 0.0
-        under = np.where(beside[:, None], apart, under)
-        ceiling = np.where(beside[:, None], apart_ceiling, ceiling)
+        under[beside], ceiling[beside] = ground.under(heights[beside], lie.beside)
         # Where the two make one belly: this one as thick as that one at the edge they
         # share, its width solved.
         merging = np.abs(peaks) * standing
@@ -478,7 +510,7 @@ def _shells(heights, areas, sides, peaks, lie: Lie, ground: Ground, segments: in
     humerus = ground.humerus
     vertices = heights[:, None, None] * humerus.up + radius[..., None] * humerus.ray(phi)
     # Kept round the humerus for the muscles laid after: what the slice covers.
-    offsets = np.angle(np.exp(1j * (grid[None, :] - sides[:, None]))) / half[:, None]
+    offsets = _wrapped(grid[None, :] - sides[:, None]) / half[:, None]
     inside = np.abs(offsets) <= 1.0
     depth = _profile(offsets, peaks)
     bottom = under + GAP
@@ -496,25 +528,32 @@ def _solve(under, ceiling, start, step, gap, fixed, way, areas, rise, across, si
     by ``thickness[k] rise[k, j]`` but no nearer than ``gap`` to ``ceiling`` ((k, A) each,
     on angles from ``start`` by ``step``). Where ``fixed[k]`` is a number, the slice's
     edge stands there (its side then ``fixed + way half``) and its thickness is given: its
-    half-width is solved, by bisection from 0.01 to nearly pi. Otherwise, or if no width
-    is enough, its thickness is, from 0 to 30 cm, its window widened by 1.4 while even
+    half-width is solved, between 0.01 and nearly pi. Otherwise, or if no width
+    is enough, its thickness is, between 0 and 30 cm, its window widened by 1.4 while even
     that is too little (eight times at most). ``scratch``: (3, s) room to work in."""
     count, vertices = rise.shape
     floor, room, turn = scratch[0], scratch[1], scratch[2]
     for k in range(count):
         if fixed[k] == fixed[k]:
             low, high = 0.01, np.pi - 0.05
-            if _area(under[k], ceiling[k], start, step, gap, fixed[k] + way[k] * high, high,
-                     thickness[k], rise[k], across) >= areas[k]:
-                for _ in range(BISECTIONS):
-                    middle = 0.5 * (low + high)
-                    if _area(under[k], ceiling[k], start, step, gap, fixed[k] + way[k] * middle,
-                             middle, thickness[k], rise[k], across) >= areas[k]:
-                        high = middle
-                    else:
-                        low = middle
-                half[k] = high
-                sides[k] = fixed[k] + way[k] * high
+            over_high = _area(under[k], ceiling[k], start, step, gap, fixed[k] + way[k] * high,
+                              high, thickness[k], rise[k], across) - areas[k]
+            if over_high >= 0.0:
+                over_low = _area(under[k], ceiling[k], start, step, gap,
+                                 fixed[k] + way[k] * low, low, thickness[k], rise[k],
+                                 across) - areas[k]
+                stale = 0
+                while over_low < 0.0 and high - low > TOLERANCE:
+                    middle = _false_position(low, over_low, high, over_high)
+                    over = _area(under[k], ceiling[k], start, step, gap,
+                                 fixed[k] + way[k] * middle, middle, thickness[k], rise[k],
+                                 across) - areas[k]
+                    low, over_low, high, over_high, stale = _narrowed(
+                        low, over_low, high, over_high, middle, over, stale)
+                    if 0.0 <= over_high <= CLOSE * areas[k]:
+                        break
+                half[k] = high if over_low < 0.0 else low
+                sides[k] = fixed[k] + way[k] * half[k]
                 continue
         for _ in range(8):
             for j in range(vertices):  # the polygon's angles stay while its thickness is sought
@@ -522,17 +561,47 @@ def _solve(under, ceiling, start, step, gap, fixed, way, areas, rise, across, si
                 floor[j] = _interpolated(under[k], start, step, phi) + gap
                 room[j] = max(_interpolated(ceiling[k], start, step, phi) - gap - floor[j], 0.0)
                 turn[j] = np.sin(half[k] * (across[(j + 1) % vertices] - across[j]))
-            if _fixed_area(floor, room, turn, rise[k], 30.0) >= areas[k]:
-                low, high = 0.0, 30.0
-                for _ in range(BISECTIONS):
-                    middle = 0.5 * (low + high)
-                    if _fixed_area(floor, room, turn, rise[k], middle) >= areas[k]:
-                        high = middle
-                    else:
-                        low = middle
-                thickness[k] = high
+            low, high = 0.0, 30.0
+            over_high = _fixed_area(floor, room, turn, rise[k], high) - areas[k]
+            if over_high >= 0.0:
+                over_low = _fixed_area(floor, room, turn, rise[k], low) - areas[k]
+                stale = 0
+                while over_low < 0.0 and high - low > TOLERANCE:
+                    middle = _false_position(low, over_low, high, over_high)
+                    over = _fixed_area(floor, room, turn, rise[k], middle) - areas[k]
+                    low, over_low, high, over_high, stale = _narrowed(
+                        low, over_low, high, over_high, middle, over, stale)
+                    if 0.0 <= over_high <= CLOSE * areas[k]:
+                        break
+                thickness[k] = high if over_low < 0.0 else low
                 break
             half[k] = min(half[k] * 1.4, np.pi - 0.05)
+
+
+@helper
+def _false_position(low, over_low, high, over_high):
+    """Where the line through (``low``, ``over_low`` < 0) and (``high``, ``over_high`` >= 0)
+    crosses nought: the next guess of a root between them (their middle if it falls
+    outside, as rounding can make it)."""
+    guess = low - over_low * (high - low) / (over_high - over_low)
+    if not low < guess < high:
+        guess = 0.5 * (low + high)
+    return guess
+
+
+@helper
+def _narrowed(low, over_low, high, over_high, guess, over, stale):
+    """The bracket (``low``, ``over_low``, ``high``, ``over_high``) narrowed by ``guess``,
+    where the function is ``over``; the Illinois rule halves the value at an end kept
+    twice running (``stale``: -1 the low end was, 1 the high end), so that false position
+    closes in from both sides instead of creeping from one (Dowell and Jarratt 1971)."""
+    if over >= 0.0:
+        if stale == -1:
+            over_low *= 0.5
+        return low, over_low, guess, over, -1
+    if stale == 1:
+        over_high *= 0.5
+    return guess, over, high, over_high, 1
 
 
 @helper
@@ -582,6 +651,11 @@ def _interpolated(values, start, step, phi):
     return (1.0 - share) * values[index] + share * values[(index + 1) % count]
 
 
+def _wrapped(angles: np.ndarray) -> np.ndarray:
+    """``angles`` (radians, any shape) brought within -pi to pi."""
+    return np.mod(angles + np.pi, 2.0 * np.pi) - np.pi
+
+
 def _at_angles(values: np.ndarray, grid: np.ndarray, phi: np.ndarray) -> np.ndarray:
     """``values`` (k, ANGLES) on the periodic ``grid`` of angles, at angles ``phi`` (k, s)."""
     step = 2.0 * np.pi / ANGLES
@@ -597,14 +671,15 @@ def _at_angles(values: np.ndarray, grid: np.ndarray, phi: np.ndarray) -> np.ndar
 def _with_area(rings: np.ndarray, areas: np.ndarray, normal: np.ndarray) -> np.ndarray:
     """``rings`` (k, segments, 3), each a polygon in a plane square to ``normal`` (3,),
     scaled about its centroid to have its area of ``areas`` (k,)."""
-    first = np.cross(normal, [0.0, 0.0, 1.0])
+    first = np.array([normal[1], -normal[0], 0.0])  # normal x (0, 0, 1)
     first /= np.linalg.norm(first)
-    second = np.cross(normal, first)
+    second = _cross(normal, first)
     x, y = rings @ first, rings @ second
-    cross = x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y
+    x1, y1 = _following(x), _following(y)
+    cross = x * y1 - x1 * y
     area = 0.5 * np.abs(np.sum(cross, axis=1))
-    cx = np.sum((x + np.roll(x, -1, axis=1)) * cross, axis=1) / (6.0 * np.sum(cross, axis=1) / 2.0)
-    cy = np.sum((y + np.roll(y, -1, axis=1)) * cross, axis=1) / (6.0 * np.sum(cross, axis=1) / 2.0)
+    cx = np.sum((x + x1) * cross, axis=1) / (6.0 * np.sum(cross, axis=1) / 2.0)
+    cy = np.sum((y + y1) * cross, axis=1) / (6.0 * np.sum(cross, axis=1) / 2.0)
     level = (rings @ normal).mean(axis=1)
     centroid = (cx[:, None] * first + cy[:, None] * second + level[:, None] * normal)
     scale = np.sqrt(areas / area)
@@ -642,18 +717,33 @@ def muscle_mesh(laid: Laid, closed: bool) -> Mesh:
     padded = np.concatenate([np.broadcast_to(start_pole, (1, segments, 3)), grid,
                              np.broadcast_to(end_pole, (1, segments, 3))])
     along = padded[2:] - padded[:-2]
-    around = np.roll(grid, -1, axis=1) - np.roll(grid, 1, axis=1)
-    normals = np.cross(around, along)
-    normals /= np.maximum(np.linalg.norm(normals, axis=2, keepdims=True), 1e-300)
+    around = np.concatenate([grid[:, 1:], grid[:, :1]], axis=1) \
+        - np.concatenate([grid[:, -1:], grid[:, :-1]], axis=1)
+    normals = _cross(around, along)
+    normals /= np.maximum(np.sqrt(np.einsum("...c,...c->...", normals, normals))[..., None],
+                          1e-300)
     normals = np.concatenate([start_out[None], normals.reshape(-1, 3), end_out[None]])
     return Mesh(vertices, normals, _closed_tube(len(grid), segments))
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.cross`` of (..., 3) arrays, written out: numpy's own moves the axes about."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
+    out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
+    out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    return out
+
+
 def _plane_area(ring: np.ndarray) -> float:
-    """The area of the plane polygon ``ring`` (s, 3)."""
-    centre = ring.mean(axis=0)
-    return 0.5 * float(np.linalg.norm(np.cross(ring - centre, np.roll(ring, -1, axis=0) - centre)
-                                      .sum(axis=0)))
+    """The area of the plane polygon ``ring`` (s, 3): half the length of the sum of its
+    edges' cross products (the shoelace in 3D)."""
+    return 0.5 * float(np.linalg.norm(_cross(ring, _following(ring.T).T).sum(axis=0)))
+
+
+def _following(values: np.ndarray) -> np.ndarray:
+    """``values`` (..., s) moved one place back along their last axis: the next vertex's."""
+    return np.concatenate([values[..., 1:], values[..., :1]], axis=-1)
 
 
 def tendon_shares(laid: Laid, muscle: Muscle, segments: int) -> np.ndarray:
