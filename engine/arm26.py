@@ -115,15 +115,18 @@ LIES: dict[str, Lie] = {
     # The biceps over it: the short head from inside the front, the long head beside it
     # from outside; from 20 cm above the elbow down they make one belly, split in front.
     "BICshort": Lie(side=(-40.0, 0.0), aspect=1.5, spread=45.0, wall=1, merge_below=20.0,
-                    lane=-0.3),
+                    lane=-0.3, band=-1),
     # The triceps' medial head deep on the back of the humerus, the lateral head over its
     # outer side, the long head over its inner side.
-    "TRImed": Lie(side=(180.0, 180.0), aspect=3.0, spread=90.0),
-    "TRIlat": Lie(side=(125.0, 150.0), aspect=1.8, spread=50.0, lane=0.85),
+    # Towards the elbow the biceps' two tendons make one, flat, on the radial tuberosity; the
+    # triceps' three one broad tendon on the olecranon, the medial head's in the middle.
+    "TRImed": Lie(side=(180.0, 180.0), aspect=3.0, spread=90.0, band=0, seam=0.45),
+    "TRIlat": Lie(side=(125.0, 150.0), aspect=1.8, spread=50.0, lane=0.85, band=1,
+                  seam=0.45),
     "TRIlong": Lie(side=(-145.0, -160.0), aspect=3.0, spread=55.0, beside="TRIlat",
-                   lane=-0.85),
+                   lane=-0.85, band=-1, seam=0.45),
     "BIClong": Lie(side=(40.0, 15.0), aspect=1.5, spread=45.0, beside="BICshort", wall=-1,
-                   merge_below=20.0, lane=0.3),
+                   merge_below=20.0, lane=0.3, band=1),
 }
 """Where each of the six lies round the humerus (``engine/layers.py``), as anatomy atlases
 draw a mid-arm section: the biceps and brachialis in front, the triceps behind."""

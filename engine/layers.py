@@ -60,6 +60,8 @@ BRIDGE = 0.4  # cm: what lies this close outside the humerus's own layers counts
 BLEND = 2.0  # cm of height over which the slices turn to the path at either end
 END = 0.8  # cm of a muscle's path at either end drawn round on it, where its tendon holds on
 MERGE = 4.0  # cm of height over which two heads come to share one belly
+BAND = 2.5  # how many times as wide as thick heads' tendons are where they make one
+SQUARENESS = 4.0  # the exponent of the superellipse of a tendon made of heads' parts
 NEAREST = 0.8  # cm: the least radius a slice's width is measured at
 ROUND = 3.0  # cm^2: a slice this large or larger is as flat as its muscle's aspect
 STAND = (0.4, 1.2)  # cm: from this thick to this, a muscle comes to be one to lie beside
@@ -334,6 +336,10 @@ def lay(name: str, muscle: Muscle, route: np.ndarray, lie: Lie, ground: Ground,
     lane = np.where(on_route > last, lie.lane, 0.0)[:, None] * HINGE
     rings[round_] = _circles((points + lane)[round_], ahead[round_], outward,
                              np.sqrt(areas[round_] / (np.pi * fill(segments))), segments)
+    if lie.band is not None:
+        banded = round_ & (on_route > last)
+        rings[banded] = _band(points[banded], ahead[banded], outward, areas[banded],
+                              on_route[banded] - last, lie, segments)
     heights = np.empty(0)
     inner = outer = np.empty((0, ANGLES))
     windows = np.empty((0, 3))
@@ -434,6 +440,58 @@ def _circles(centres: np.ndarray, ahead: np.ndarray, outward: np.ndarray,
     spokes = (np.cos(theta)[None, :, None] * first[:, None, :]
               + np.sin(theta)[None, :, None] * second[:, None, :])
     return centres[:, None, :] + radii[:, None, None] * spokes
+
+
+def _band(centres: np.ndarray, ahead: np.ndarray, outward: np.ndarray, areas: np.ndarray,
+          past: np.ndarray, lie: Lie, segments: int) -> np.ndarray:
+    """(k, segments, 3) a tendon's sections as its part of one flat tendon (`Lie.band`):
+    at ``centres`` (k, 3) on its path, square to the unit ``ahead`` (k, 3), of ``areas``
+    (k,), ``past`` (k,) cm past the end of its slices, from which they turn, over
+    ``BLEND``, from the round sections on its lane into flat ones, ``BAND`` times as wide
+    along the hinge as thick, side by side with its neighbours' (a side part's inner edge
+    ``lie.seam`` from the path; the middle part as wide as the seam allows). Each polygon
+    has its area exactly, its centroid off the path only along the hinge, square to the
+    bends round it, so the volume is kept. Vertex 0 towards ``outward`` (3,), as
+    `_circles` has it, so that the rings join untwisted."""
+    weight = np.clip(past / BLEND, 0.0, 1.0)
+    weight = weight * weight * (3.0 - 2.0 * weight)
+    # The section's own frame: along the hinge (its width) and across it (its thickness).
+    wide = HINGE - (ahead @ HINGE)[:, None] * ahead
+    wide /= np.linalg.norm(wide, axis=1, keepdims=True)
+    thick = _cross(ahead, wide)
+    first = outward - (ahead @ outward)[:, None] * ahead
+    first /= np.linalg.norm(first, axis=1, keepdims=True)
+    second = _cross(ahead, first)
+    theta = 2.0 * np.pi * np.arange(segments) / segments
+    spokes = (np.cos(theta)[None, :, None] * first[:, None, :]
+              + np.sin(theta)[None, :, None] * second[:, None, :])  # (k, segments, 3)
+    u = np.einsum("ksc,kc->ks", spokes, wide)
+    v = np.einsum("ksc,kc->ks", spokes, thick)
+    # A superellipse (exponent SQUARENESS): blunt ends, so that the parts meet along their
+    # edges rather than at points.
+    power = (1.0 + weight * (2.0 / SQUARENESS - 1.0))[:, None]  # 1: the round section
+    shape_u = np.sign(u) * np.abs(u) ** power
+    shape_v = np.sign(v) * np.abs(v) ** power
+    unit = _plane_polygon_areas(shape_u, shape_v)  # of half-widths 1 by 1, (k,)
+    aspect = 1.0 + weight * (BAND - 1.0)
+    if lie.band == 0:  # the middle: as wide as the seam, unless a round section is wider
+        round_half = np.sqrt(areas / (unit * BAND)) * BAND
+        half_width = (1.0 - weight) * np.sqrt(areas / unit) + weight * np.minimum(
+            lie.seam, round_half)
+        half_thick = areas / (unit * half_width)
+        offset = np.zeros(len(areas))
+    else:
+        half_thick = np.sqrt(areas / (unit * aspect))
+        half_width = aspect * half_thick
+        offset = (1.0 - weight) * lie.lane + weight * lie.band * (lie.seam + half_width)
+    centre = centres + offset[:, None] * HINGE
+    return (centre[:, None, :] + (half_width[:, None] * shape_u)[..., None] * wide[:, None, :]
+            + (half_thick[:, None] * shape_v)[..., None] * thick[:, None, :])
+
+
+def _plane_polygon_areas(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The areas (k,) of the polygons of vertices ``x``, ``y`` (k, s) (counter-clockwise)."""
+    return 0.5 * np.sum(x * _following(y) - _following(x) * y, axis=1)
 
 
 def _profile(across: np.ndarray, peaks: np.ndarray) -> np.ndarray:

@@ -22,7 +22,11 @@ class Lie:
     slice; a muscle with a wall has it at ``side`` there. ``lane``: how far along the
     hinge (cm, towards the outside) its tendon keeps from its path towards its insertion,
     beside the others that end on the same point. ``lowest``: the least height (cm above
-    the elbow's centre) its slices go down to; below, it keeps to its path."""
+    the elbow's centre) its slices go down to; below, it keeps to its path. ``band``: the
+    part it forms of one flat tendon that heads sharing an insertion make together, towards
+    it (None: its tendon is round): -1 or 1 a side part (towards the inside or the
+    outside along the hinge), its inner edge ``seam`` cm from the path; 0 the middle part,
+    ``seam`` cm wide either side of the path."""
 
     side: tuple[float, float]
     aspect: float = 1.6
@@ -32,3 +36,5 @@ class Lie:
     merge_below: float = -math.inf
     lane: float = 0.0
     lowest: float = 0.0
+    band: int | None = None
+    seam: float = 0.0
