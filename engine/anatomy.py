@@ -42,22 +42,9 @@ def arm_parts(arm: Arm, segments: int, hidden: frozenset[str] = frozenset(),
     in layers round the humerus (``engine/layers.py``); on the simple one, one laid over
     others turns to its own side of them, round the humerus (`arm_leans`).
     """
-    return parts_and_tendons(arm, segments, hidden, companion_segments)[0]
-
-
-def parts_and_tendons(arm: Arm, segments: int, hidden: frozenset[str] = frozenset(),
-                      companion_segments: int | None = None
-                      ) -> tuple[dict[str, Mesh], dict[str, np.ndarray]]:
-    """`arm_parts`, and how much each vertex of each muscle's part is tendon (n,) float32,
-    by name (see `tendon_share`)."""
     if arm.skeleton.model == "arm26":
         return _layered_parts(arm, segments, hidden, companion_segments)
-    parts = _simple_parts(arm, segments, hidden, companion_segments)
-    flexion = arm.flexion
-    tendons = {name: tendon_share(muscle, path, flexion, parts[name])
-               for name, muscle, path in zip(arm.names, arm.muscles, arm.paths)
-               if name not in hidden}
-    return parts, tendons
+    return _simple_parts(arm, segments, hidden, companion_segments)
 
 
 def _layered_parts(arm: Arm, segments: int, hidden: frozenset[str],
@@ -67,12 +54,11 @@ def _layered_parts(arm: Arm, segments: int, hidden: frozenset[str],
     # mesh (export-mesh of the single biceps) imports no numba.
     from biceps.engine.layers import Ground, Humerus, lay
     from biceps.engine.layers import muscle_mesh as layered_mesh
-    from biceps.engine.layers import tendon_shares as layered_tendons
 
     pose, skeleton = arm.pose, arm.skeleton
     ground = Ground(Humerus(skeleton.shoulder), *bone_spheres(skeleton, pose), len(arm.names))
     names, muscles, paths = arm.names, arm.muscles, arm.paths
-    parts, tendons = {}, {}
+    parts = {}
     for index in laying_order(arm):
         name, muscle, path = names[index], muscles[index], paths[index]
         around = segments if index == 0 or companion_segments is None else companion_segments
@@ -84,9 +70,8 @@ def _layered_parts(arm: Arm, segments: int, hidden: frozenset[str],
                    (held[0] != "humerus", held[1] != "humerus"))
         if name not in hidden:
             parts[name] = layered_mesh(laid, muscle.volume_mode == "closed")
-            tendons[name] = layered_tendons(laid, muscle, around)
     parts = {name: parts[name] for name in names if name in parts}
-    return {**parts, **bone_meshes(skeleton, pose, segments)}, tendons
+    return {**parts, **bone_meshes(skeleton, pose, segments)}
 
 
 def _lie_of(route: np.ndarray, humerus: Humerus) -> Lie:
@@ -143,11 +128,15 @@ def tendon_share(muscle: Muscle, path: MusclePath, flexion: float, mesh: Mesh) -
     return np.interp(places, np.arange(len(growth)), share).astype(np.float32)
 
 
-def node_places(muscle: Muscle, path: MusclePath, flexion: float,
+def node_places(muscle: Muscle, path: MusclePath | ViaPath, flexion: float,
                 vertices: np.ndarray) -> np.ndarray:
     """Each of ``vertices`` (n, 3) (of the muscle's part) placed along the muscle, in
     nodes: (n,) float64, 0 at the first node, ``node_count - 1`` at the last (the caps reach
     a little past them)."""
+    if isinstance(path, ViaPath):  # laid in layers, its sections the same shares of it
+        from biceps.engine.layers import ring_places
+
+        return ring_places(muscle, len(vertices))
     start, end = path.ends(flexion)
     chord = float(np.linalg.norm(end - start))
     return (vertices - start) @ ((end - start) / chord) / chord * (muscle.node_count - 1)

@@ -804,15 +804,14 @@ def _following(values: np.ndarray) -> np.ndarray:
     return np.concatenate([values[..., 1:], values[..., :1]], axis=-1)
 
 
-def tendon_shares(laid: Laid, muscle: Muscle, segments: int) -> np.ndarray:
-    """How much each vertex of the laid muscle's mesh (`muscle_mesh`) is tendon: (n,)
-    float32 in [0, 1], 1 on the nodes that do not grow, 0 where a node grows at least half
-    as much as the most growing one, linear between nodes."""
-    growth = muscle.growth
-    share = 1.0 - np.clip(growth / (0.5 * growth.max()), 0.0, 1.0)
-    nodes = laid.places / muscle.length * (len(growth) - 1)
-    rings = np.interp(nodes, np.arange(len(growth)), share)
-    caps = CAP_RINGS - 1
+def ring_places(muscle: Muscle, vertices: int) -> np.ndarray:
+    """Each of the ``vertices`` of the laid muscle's mesh (`muscle_mesh`) placed along the
+    muscle, in nodes: (n,) float64, 0 at the first node, ``node_count - 1`` at the last, a
+    dome's rings and pole at their end section's. Its sections are at the same shares of
+    its length at every pose, so this is the same at every pose."""
+    rings = shares(SECTIONS) * (muscle.node_count - 1)
+    caps = CAP_RINGS - 1 if muscle.volume_mode == "closed" else 0
+    segments = (vertices - 2) // (SECTIONS + 2 * caps)
     per_ring = np.concatenate([np.full(caps, rings[0]), rings, np.full(caps, rings[-1])])
-    return np.concatenate([[rings[0]], np.repeat(per_ring, segments),
-                           [rings[-1]]]).astype(np.float32)
+    return np.concatenate([[rings[0]], np.repeat(per_ring, segments), [rings[-1]]])
+

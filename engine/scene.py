@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from biceps.engine import coldstart
-from biceps.engine.anatomy import node_places, parts_and_tendons
+from biceps.engine.anatomy import arm_parts, node_places, tendon_share
 from biceps.engine.arm import Arm
 from biceps.engine.config import Config, rgb
 from biceps.engine.cost import check_picture
@@ -124,8 +124,7 @@ def scene_mesh(arm: Arm, render: RenderSettings,
     its parts' spans: the bones in the bone colour, each muscle not ``hidden`` with its
     belly in its own colour (or its strain's, see `strain_colour`) blending into the tendon
     colour towards its ends."""
-    parts, tendons = parts_and_tendons(arm, render.segments, hidden,
-                                       companion_segments(render.segments))
+    parts = arm_parts(arm, render.segments, hidden, companion_segments(render.segments))
     ends = np.cumsum([len(mesh.vertices) for mesh in parts.values()])
     spans = dict(zip(parts, zip([0, *ends[:-1]], ends)))
     # Component-major, the renderer's layout (engine/raster/__init__.py), a channel at a time:
@@ -134,12 +133,13 @@ def scene_mesh(arm: Arm, render: RenderSettings,
     albedo[:] = _unit_rgb(render.bone_colour)[:, None]
     tendon_colour = _unit_rgb(render.tendon_colour)
     colours = (render.muscle_colour, *(companion.colour for companion in arm.companions))
-    for name, muscle, colour in zip(arm.names, arm.muscles, colours):
+    flexion = arm.flexion  # worked out from the length at each read: 9 us
+    for name, muscle, path, colour in zip(arm.names, arm.muscles, arm.paths, colours):
         if name in hidden:
             continue
         belly = (strain_colour(muscle.length / muscle.reference_length - 1.0)
                  if render.colour_by == "strain" else _unit_rgb(colour))
-        tendon = tendons[name]
+        tendon = tendon_share(muscle, path, flexion, parts[name])
         not_tendon = 1.0 - tendon
         start, end = spans[name]
         for channel, out in enumerate(albedo[:, start:end]):

@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from biceps.engine.anatomy import arm_parts, parts_and_tendons
+from biceps.engine.anatomy import arm_parts, tendon_share
 from biceps.engine.config import load_config, rgb
 from biceps.engine.mesh import _lengths, _spokes, _spokes_along
 from biceps.engine.scene import companion_segments, scene_mesh, strain_colour
@@ -41,8 +41,7 @@ def test_each_muscle_blends_from_its_belly_into_its_tendons_the_rest_bone():
     for colour_by in ("muscle", "strain"):
         render = ELBOW.render.__class__(**{**vars(ELBOW.render), "colour_by": colour_by})
         _, albedo, _ = scene_mesh(arm, render, hidden)
-        parts, tendons = parts_and_tendons(arm, render.segments, hidden,
-                                           companion_segments(render.segments))
+        parts = arm_parts(arm, render.segments, hidden, companion_segments(render.segments))
         bone = np.array(rgb(render.bone_colour), np.float32) / 255
         tendon_colour = np.array(rgb(render.tendon_colour), np.float32) / 255
         colours = (render.muscle_colour, *(c.colour for c in arm.companions))
@@ -53,7 +52,7 @@ def test_each_muscle_blends_from_its_belly_into_its_tendons_the_rest_bone():
                 continue
             belly = (strain_colour(muscle.length / muscle.reference_length - 1.0)
                      if colour_by == "strain" else np.array(rgb(colour), np.float32) / 255)
-            tendon = tendons[name][:, None]
+            tendon = tendon_share(muscle, path, arm.flexion, parts[name])[:, None]
             assert tendon.min() == 0.0 and tendon.max() == 1.0, name  # belly and tendon
             expected[name] = (1.0 - tendon) * belly + tendon * tendon_colour
         assert albedo.dtype == np.float32
