@@ -153,22 +153,33 @@ class Ground:
         self._inner[start:end] = laid.inner[order]
         self._outer[start:end] = laid.outer[order]
 
-    def under(self, levels: np.ndarray, besides: str | None = None
+    def under(self, levels: np.ndarray, besides: str | None = None,
+              middles: np.ndarray | None = None, reach: float = math.pi
               ) -> tuple[np.ndarray, np.ndarray]:
         """At each of ``levels`` (k,) heights and each of the ANGLES angles round the
         humerus: how far from its axis what lies on it reaches (the bone and the layers on
         it, joined across gaps under ``BRIDGE``; the muscle ``besides`` left out, which a
         slice stands beside), and where the next thing out begins (``OPEN`` if nothing
-        does): (k, ANGLES) each."""
+        does): (k, ANGLES) each. Only the angles within ``reach`` (radians) either side of
+        the level's of ``middles`` (k,), if given, and the grid's next either side; NaN at
+        the others."""
         levels = np.ascontiguousarray(levels, dtype=np.float64)
         used = np.array([name != besides for name in self._names], dtype=np.bool_)
-        reach = np.empty((len(levels), ANGLES))
-        ceiling = np.empty((len(levels), ANGLES))
+        step = 2.0 * np.pi / ANGLES
+        if middles is None or reach >= np.pi:
+            first = np.zeros(len(levels), dtype=np.int64)
+            count = ANGLES
+        else:
+            first = np.floor((middles - reach - self._phi[0]) / step).astype(np.int64) % ANGLES
+            count = min(ANGLES, int(math.ceil(2.0 * reach / step)) + 2)
+        reach_out = np.full((len(levels), ANGLES), np.nan)
+        ceiling = np.full((len(levels), ANGLES), np.nan)
         things = len(self.radii) + len(self._names)
-        _sweep(levels, self._spheres, self.radii, np.array(self._starts), used, self._heights,
-               self._inner, self._outer, self._cos, self._sin, BRIDGE, OPEN, reach, ceiling,
-               np.empty((3, things)), np.empty((2, things)))
-        return reach, ceiling
+        _sweep(levels, first, count, self._spheres, self.radii, np.array(self._starts), used,
+               self._heights, self._inner, self._outer, self._cos, self._sin, BRIDGE, OPEN,
+               reach_out, ceiling, np.empty((3, things)), np.empty((2, things)),
+               np.empty(len(self._names), dtype=np.int64), np.empty(len(self._names)))
+        return reach_out, ceiling
 
     def window(self, name: str, levels: np.ndarray) -> np.ndarray:
         """Muscle ``name``'s slices' windows at ``levels`` (k, 3), as `Laid` keeps them (NaN
@@ -189,9 +200,10 @@ class Ground:
 
 
 @ngjit
-def _sweep(levels, spheres, radii, starts, used, heights, inner, outer, cos, sin, bridge,
-           empty, reach, ceiling, circles, intervals):
-    """For each level k and angle a round the humerus: ``reach[k, a]``, how far out what
+def _sweep(levels, opening, count, spheres, radii, starts, used, heights, inner, outer, cos, sin,
+           bridge, empty, reach, ceiling, circles, intervals, brackets, shares):
+    """For each level k and the ``count`` angles a round the humerus from ``opening[k]`` on
+    (round the grid): ``reach[k, a]``, how far out what
     lies on the humerus reaches, and ``ceiling[k, a]``, where the next thing out begins
     (``empty`` if nothing does). What lies there: the circles in which the bones' spheres
     (heights up the humerus's axis, distances towards its front and its outside (3, n);
@@ -202,10 +214,11 @@ def _sweep(levels, spheres, radii, starts, used, heights, inner, outer, cos, sin
     side of the level. The reach grows from the axis by everything that begins near it:
     wholly if it begins within ``bridge / 2`` of it, less and less as the gap grows to
     ``bridge`` (so that the reach changes smoothly as things move), not at all beyond; the
-    first thing further out than that is the ceiling. ``circles`` (3, n + m) and
-    ``intervals`` (2, n + m): room to work in."""
-    count, angles = reach.shape
-    for k in range(count):
+    first thing further out than that is the ceiling. ``circles`` (3, n + m),
+    ``intervals`` (2, n + m), ``brackets`` (m,) int64 and ``shares`` (m,): room to work
+    in."""
+    angles = reach.shape[1]
+    for k in range(reach.shape[0]):
         level = levels[k]
         cut = 0  # the bones' circles at this level
         for j in range(radii.shape[0]):
@@ -232,7 +245,17 @@ def _sweep(levels, spheres, radii, starts, used, heights, inner, outer, cos, sin
                 circles[2, kept] = circles[2, i]
                 kept += 1
         cut = kept
-        for a in range(angles):
+        # Each muscle's slices either side of the level (-1: it has none there).
+        for m in range(used.shape[0]):
+            first, last = starts[m], starts[m + 1] - 1
+            brackets[m] = -1
+            if used[m] and heights[first] <= level <= heights[last]:
+                below = first + np.searchsorted(heights[first:last + 1], level) - 1
+                below = min(max(below, first), last - 1)
+                brackets[m] = below
+                shares[m] = (level - heights[below]) / (heights[below + 1] - heights[below])
+        for turn in range(count):
+            a = (opening[k] + turn) % angles
             things = 0
             for i in range(cut):
                 front, outside, radius = circles[0, i], circles[1, i], circles[2, i]
@@ -243,12 +266,10 @@ def _sweep(levels, spheres, radii, starts, used, heights, inner, outer, cos, sin
                     intervals[1, things] = facing + np.sqrt(spread)
                     things += 1
             for m in range(used.shape[0]):
-                first, last = starts[m], starts[m + 1] - 1
-                if not used[m] or level < heights[first] or level > heights[last]:
+                below = brackets[m]
+                if below < 0:
                     continue
-                below = first + np.searchsorted(heights[first:last + 1], level) - 1
-                below = min(max(below, first), last - 1)
-                share = (level - heights[below]) / (heights[below + 1] - heights[below])
+                share = shares[m]
                 start = (1.0 - share) * inner[below, a] + share * inner[below + 1, a]
                 if start == start:
                     intervals[0, things] = start
@@ -290,13 +311,15 @@ def prepare() -> None:
     levels, angles, vertices = 1, ANGLES, SOLVED
     reach, ceiling = np.zeros((levels, angles)), np.zeros((levels, angles))
     one = np.zeros(1)
-    _sweep(np.zeros(levels), np.zeros((3, 1)), one, np.zeros(2, dtype=np.int64),
+    _sweep(np.zeros(levels), np.zeros(levels, dtype=np.int64), angles, np.zeros((3, 1)), one,
+           np.zeros(2, dtype=np.int64),
            np.ones(1, dtype=np.bool_), np.zeros(2), np.zeros((2, angles)),
            np.zeros((2, angles)), np.zeros(angles), np.zeros(angles), BRIDGE, OPEN, reach,
-           ceiling, np.empty((3, 2)), np.empty((2, 2)))
+           ceiling, np.empty((3, 2)), np.empty((2, 2)), np.empty(1, dtype=np.int64),
+           np.empty(1))
     _solve(reach, ceiling, 0.0, 1.0, GAP, np.full(1, np.nan), one, one,
            np.zeros((1, vertices)), np.zeros(vertices), np.zeros(1), np.ones(1), np.zeros(1),
-           np.empty((3, vertices)))
+           1.0, np.ones(1), np.empty((3, vertices)))
 
 
 def fill(segments: int) -> float:
@@ -334,10 +357,11 @@ def lay(name: str, muscle: Muscle, route: np.ndarray, lie: Lie, ground: Ground,
     # Past the stretch, towards the insertion, the tendon keeps to its lane across the
     # elbow (along the hinge, square to the bends round it, so its volume is kept).
     lane = np.where(on_route > last, lie.lane, 0.0)[:, None] * HINGE
-    rings[round_] = _circles((points + lane)[round_], ahead[round_], outward,
-                             np.sqrt(areas[round_] / (np.pi * fill(segments))), segments)
-    if lie.band is not None:
-        banded = round_ & (on_route > last)
+    banded = round_ & (on_route > last) if lie.band is not None else np.zeros_like(round_)
+    circled = round_ & ~banded
+    rings[circled] = _circles((points + lane)[circled], ahead[circled], outward,
+                              np.sqrt(areas[circled] / (np.pi * fill(segments))), segments)
+    if banded.any():
         rings[banded] = _band(points[banded], ahead[banded], outward, areas[banded],
                               on_route[banded] - last, lie, segments)
     heights = np.empty(0)
@@ -370,11 +394,12 @@ def lay(name: str, muscle: Muscle, route: np.ndarray, lie: Lie, ground: Ground,
         lanes = np.where(share > 0.5, lie.lane, 0.0)[:, None] * HINGE
         on_path = points[sliced] + lanes
         on_path = on_path + (heights - on_path @ humerus.up)[:, None] * humerus.up
-        circles = _circles(on_path, np.tile(-humerus.up, (len(heights), 1)),
-                           humerus.ray(sides), np.sqrt(slice_areas / (np.pi * fill(segments))),
-                           segments)
-        mixed = (1.0 - nearness)[:, None, None] * shells + nearness[:, None, None] * circles
-        rings[sliced] = _with_area(mixed, slice_areas, humerus.up)
+        near = nearness > 0.0
+        circles = _circles(on_path[near], np.tile(-humerus.up, (near.sum(), 1)),
+                           humerus.ray(sides[near]),
+                           np.sqrt(slice_areas[near] / (np.pi * fill(segments))), segments)
+        shells[near] += nearness[near, None, None] * (circles - shells[near])
+        rings[sliced] = _with_area(shells, slice_areas, humerus.up)
         # The muscles laid after lie on its slices, not on the ends that turn to the path.
         inner = np.where(nearness[:, None] < 0.5, inner, np.nan)
         outer = np.where(nearness[:, None] < 0.5, outer, np.nan)
@@ -516,13 +541,17 @@ def _shells(heights, areas, sides, peaks, lie: Lie, ground: Ground, segments: in
     is solved for the area. A muscle that makes one belly with the one it lies beside
     takes that one's thickness at the edge they share, and its width is solved instead.
     """
-    under, ceiling = ground.under(heights)
+    grid = ground._phi
+    step = 2.0 * np.pi / ANGLES
+    # How far round either way a slice may reach from the middle of its window (twice its
+    # spread; the widest solved are 1.3 times it): the ground is swept only so far.
+    widest = min(np.pi - 0.05, 2.0 * math.radians(lie.spread))
+    under, _ = ground.under(heights, middles=sides, reach=step)
     # Solved at a fixed number of vertices, so that where a slice lies does not depend on
     # how finely it is drawn (nor, then, where the muscles laid on it lie).
     theta = 2.0 * np.pi * np.arange(SOLVED) / SOLVED
     across = np.sin(theta)
     rise = np.where(np.cos(theta) >= 0.0, _profile(across, peaks), 0.0)  # (k, SOLVED)
-    grid = ground._phi
     # A slice thickest at an edge is half of a belly it shares: half as wide for its area;
     # a tendon's is round (a belly's flatness comes in as its sections grow to ROUND).
     aspect = ((1.0 + (lie.aspect - 1.0) * np.minimum(areas / ROUND, 1.0))
@@ -548,15 +577,22 @@ def _shells(heights, areas, sides, peaks, lie: Lie, ground: Ground, segments: in
         own_edge = sides - way * half
         edge = own_edge + standing * _wrapped(np.nan_to_num(edge) - own_edge)
         sides = edge + way * half
-        beside = standing > 0.0
-        under[beside], ceiling[beside] = ground.under(heights[beside], lie.beside)
         # Where the two make one belly: this one as thick as that one at the edge they
         # share, its width solved.
         merging = np.abs(peaks) * standing
         thickness = merging * np.nan_to_num(neighbour[:, 2]) + (1.0 - merging) * natural
         fixed = np.where(peaks != 0.0, edge, np.nan)
+    # The ground under each slice's widest window: from its edge on, where that stands.
+    middles = np.where(np.isnan(fixed), sides, fixed + way * widest)
+    reach = widest + 2.0 * step
+    under, ceiling = ground.under(heights, middles=middles, reach=reach)
+    if lie.beside is not None:  # beside its neighbour: on the ground without it
+        beside = standing > 0.0
+        under[beside], ceiling[beside] = ground.under(heights[beside], lie.beside,
+                                                      middles[beside], reach)
     _solve(np.ascontiguousarray(under), np.ascontiguousarray(ceiling), grid[0],
-           2.0 * np.pi / ANGLES, GAP, fixed, way, areas, rise, across, sides, half, thickness,
+           step, GAP, fixed, way, areas, rise, across, sides, half, thickness, widest,
+           np.maximum(reach - step - np.abs(_wrapped(sides - middles)), half),
            np.empty((3, SOLVED)))
     theta = 2.0 * np.pi * np.arange(segments) / segments
     across = np.sin(theta)
@@ -579,21 +615,22 @@ def _shells(heights, areas, sides, peaks, lie: Lie, ground: Ground, segments: in
 
 @ngjit
 def _solve(under, ceiling, start, step, gap, fixed, way, areas, rise, across, sides, half,
-           thickness, scratch):
+           thickness, widest, caps, scratch):
     """Each slice k's window and thickness, solved for its area ``areas[k]``, in place in
     ``sides``, ``half`` and ``thickness`` (k,). Its polygon's vertex j is at the angle
     ``sides[k] + half[k] across[j]`` round the humerus, ``gap`` out from ``under`` and up
     by ``thickness[k] rise[k, j]`` but no nearer than ``gap`` to ``ceiling`` ((k, A) each,
     on angles from ``start`` by ``step``). Where ``fixed[k]`` is a number, the slice's
     edge stands there (its side then ``fixed + way half``) and its thickness is given: its
-    half-width is solved, between 0.01 and nearly pi. Otherwise, or if no width
-    is enough, its thickness is, between 0 and 30 cm, its window widened by 1.4 while even
-    that is too little (eight times at most). ``scratch``: (3, s) room to work in."""
+    half-width is solved, between 0.01 and ``widest``. Otherwise, or if no width is
+    enough, its thickness is, between 0 and 30 cm, its window widened by 1.4 while even
+    that is too little (eight times at most, and to half-widths of ``caps[k]`` at most,
+    as far as the ground was swept). ``scratch``: (3, s) room to work in."""
     count, vertices = rise.shape
     floor, room, turn = scratch[0], scratch[1], scratch[2]
     for k in range(count):
         if fixed[k] == fixed[k]:
-            low, high = 0.01, np.pi - 0.05
+            low, high = 0.01, widest
             over_high = _area(under[k], ceiling[k], start, step, gap, fixed[k] + way[k] * high,
                               high, thickness[k], rise[k], across) - areas[k]
             if over_high >= 0.0:
@@ -633,7 +670,7 @@ def _solve(under, ceiling, start, step, gap, fixed, way, areas, rise, across, si
                         break
                 thickness[k] = high if over_low < 0.0 else low
                 break
-            half[k] = min(half[k] * 1.4, np.pi - 0.05)
+            half[k] = min(half[k] * 1.4, caps[k])
 
 
 @helper
