@@ -320,6 +320,12 @@ def prepare() -> None:
     _solve(reach, ceiling, 0.0, 1.0, GAP, np.full(1, np.nan), one, one,
            np.zeros((1, vertices)), np.zeros(vertices), np.zeros(1), np.ones(1), np.zeros(1),
            1.0, np.ones(1), np.empty((3, vertices)))
+    _grid_normals(np.zeros((2, vertices, 3)), np.zeros(3), np.ones(3),
+                  np.empty((2, vertices, 3)))
+    axis = np.array([0.0, 1.0, 0.0])
+    _place(reach, ceiling, 0.0, 1.0, GAP, one, one, np.ones(1), one, one, np.zeros(vertices),
+           np.ones(vertices, dtype=np.bool_), axis, axis, axis, np.empty((1, vertices, 3)),
+           np.empty((1, angles)), np.empty((1, angles)))
 
 
 def fill(segments: int) -> float:
@@ -595,22 +601,62 @@ def _shells(heights, areas, sides, peaks, lie: Lie, ground: Ground, segments: in
            np.maximum(reach - step - np.abs(_wrapped(sides - middles)), half),
            np.empty((3, SOLVED)))
     theta = 2.0 * np.pi * np.arange(segments) / segments
-    across = np.sin(theta)
-    rise = np.where(np.cos(theta) >= 0.0, _profile(across, peaks), 0.0)  # (k, segments)
-    phi = sides[:, None] + half[:, None] * across[None, :]
-    floor = _at_angles(under, grid, phi) + GAP
-    room = np.maximum(_at_angles(ceiling, grid, phi) - GAP - floor, 0.0)
-    radius = floor + np.minimum(thickness[:, None] * rise, room)
     humerus = ground.humerus
-    vertices = heights[:, None, None] * humerus.up + radius[..., None] * humerus.ray(phi)
-    # Kept round the humerus for the muscles laid after: what the slice covers.
-    offsets = _wrapped(grid[None, :] - sides[:, None]) / half[:, None]
-    inside = np.abs(offsets) <= 1.0
-    depth = _profile(offsets, peaks)
-    bottom = under + GAP
-    top = bottom + np.minimum(thickness[:, None] * depth, np.maximum(ceiling - GAP - bottom, 0.0))
-    return (vertices, np.where(inside, bottom, np.nan), np.where(inside, top, np.nan),
-            np.column_stack([sides, half, thickness]))
+    vertices = np.empty((len(heights), segments, 3))
+    inner = np.empty((len(heights), ANGLES))
+    outer = np.empty((len(heights), ANGLES))
+    _place(under, ceiling, grid[0], step, GAP, heights, sides, half, thickness, peaks,
+           np.sin(theta), np.cos(theta) >= 0.0, humerus.up, humerus.front, humerus.outside,
+           vertices, inner, outer)
+    return vertices, inner, outer, np.column_stack([sides, half, thickness])
+
+
+@ngjit
+def _place(under, ceiling, start, step, gap, heights, sides, half, thickness, peaks, across,
+           outward, up, front, outside, vertices, inner, outer):
+    """The solved slices laid out: slice k's polygon ``vertices[k]`` (segments, 3), its
+    vertex j at the angle ``sides[k] + half[k] across[j]`` round the humerus, on the
+    ground (``under``, (k, A) on angles from ``start`` by ``step``) and, where
+    ``outward[j]``, up by ``thickness[k]`` times its profile (`_profile`, thickest at
+    ``peaks[k]``) but no nearer than ``gap`` to ``ceiling``; in the humerus's frame
+    (``up``, ``front``, ``outside`` (3,) each) at height ``heights[k]``. And what it covers
+    round the humerus, for the muscles laid after: its inner and outer radii at each of
+    the A angles within its window, NaN at the others (k, A) each."""
+    count, segments = vertices.shape[0], vertices.shape[1]
+    angles = inner.shape[1]
+    for k in range(count):
+        for j in range(segments):
+            phi = sides[k] + half[k] * across[j]
+            floor = _interpolated(under[k], start, step, phi) + gap
+            radius = floor
+            if outward[j]:
+                room = max(_interpolated(ceiling[k], start, step, phi) - gap - floor, 0.0)
+                radius += min(thickness[k] * _rise(across[j], peaks[k]), room)
+            ray_front, ray_outside = radius * np.cos(phi), radius * np.sin(phi)
+            for c in range(3):
+                vertices[k, j, c] = heights[k] * up[c] + ray_front * front[c] \
+                    + ray_outside * outside[c]
+        for a in range(angles):
+            offset = (start + a * step - sides[k] + np.pi) % (2.0 * np.pi) - np.pi
+            offset /= half[k]
+            if abs(offset) <= 1.0:
+                bottom = under[k, a] + gap
+                inner[k, a] = bottom
+                outer[k, a] = bottom + min(thickness[k] * _rise(offset, peaks[k]),
+                                           max(ceiling[k, a] - gap - bottom, 0.0))
+            else:
+                inner[k, a] = np.nan
+                outer[k, a] = np.nan
+
+
+@helper
+def _rise(across, peak):
+    """`_profile` of one slice at one place: at ``across`` from -1 to 1, thickest at
+    ``peak``."""
+    offset = across - peak
+    reach = 1.0 - peak if offset > 0.0 else 1.0 + peak
+    ratio = offset / reach if reach > 0.0 else 0.0
+    return np.sqrt(min(max(1.0 - ratio * ratio, 0.0), 1.0))
 
 
 @ngjit
@@ -807,18 +853,33 @@ def muscle_mesh(laid: Laid, closed: bool) -> Mesh:
     (start_dome, start_pole, start_out), (end_dome, end_pole, end_out) = ends
     grid = np.concatenate([start_dome[::-1], rings, end_dome])
     vertices = np.concatenate([start_pole[None], grid.reshape(-1, 3), end_pole[None]])
-    # Normals from the grid: across each ring (counter-clockwise about the way the muscle
-    # runs) crossed with along it, pointing out.
-    padded = np.concatenate([np.broadcast_to(start_pole, (1, segments, 3)), grid,
-                             np.broadcast_to(end_pole, (1, segments, 3))])
-    along = padded[2:] - padded[:-2]
-    around = np.concatenate([grid[:, 1:], grid[:, :1]], axis=1) \
-        - np.concatenate([grid[:, -1:], grid[:, :-1]], axis=1)
-    normals = _cross(around, along)
-    normals /= np.maximum(np.sqrt(np.einsum("...c,...c->...", normals, normals))[..., None],
-                          1e-300)
-    normals = np.concatenate([start_out[None], normals.reshape(-1, 3), end_out[None]])
+    normals = np.empty_like(vertices)
+    normals[0], normals[-1] = start_out, end_out
+    _grid_normals(grid, start_pole, end_pole, normals[1:-1].reshape(grid.shape))
     return Mesh(vertices, normals, _closed_tube(len(grid), segments))
+
+
+@ngjit
+def _grid_normals(grid, start_pole, end_pole, normals):
+    """The unit normals (r, s, 3) of a tube's ``grid`` of r rings of s vertices (r, s, 3),
+    closed by ``start_pole`` and ``end_pole`` (3,): across each ring (counter-clockwise
+    about the way the tube runs) crossed with along it, pointing out."""
+    rings, segments = grid.shape[0], grid.shape[1]
+    for i in range(rings):
+        for j in range(segments):
+            after, before = (j + 1) % segments, (j - 1) % segments
+            around0 = grid[i, after, 0] - grid[i, before, 0]
+            around1 = grid[i, after, 1] - grid[i, before, 1]
+            around2 = grid[i, after, 2] - grid[i, before, 2]
+            ahead = grid[i + 1, j] if i + 1 < rings else end_pole
+            behind = grid[i - 1, j] if i > 0 else start_pole
+            along0, along1, along2 = ahead[0] - behind[0], ahead[1] - behind[1], \
+                ahead[2] - behind[2]
+            x = around1 * along2 - around2 * along1
+            y = around2 * along0 - around0 * along2
+            z = around0 * along1 - around1 * along0
+            size = max(np.sqrt(x * x + y * y + z * z), 1e-300)
+            normals[i, j, 0], normals[i, j, 1], normals[i, j, 2] = x / size, y / size, z / size
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
