@@ -276,3 +276,28 @@ def test_every_muscles_length_and_moment_arm_are_its_paths(elbow):
     assert arm.moment_arms[0] == pytest.approx(arm.moment_arm, rel=1e-12)
     assert all(arm.moment_arms[arm.names.index(name)] > 0 for name in FLEXORS)
     assert all(arm.moment_arms[arm.names.index(name)] < 0 for name in EXTENSORS)
+
+
+@pytest.mark.parametrize("flexion", [0.0, 30.0, 60.0, 90.0, 130.0])
+def test_the_heads_tendons_end_flat_side_by_side_as_one(elbow, flexion):
+    # Round cords would be as wide along the hinge as thick across it; the heads' parts of
+    # one tendon are flat along it (BAND times, less where the last section still turns
+    # from the round), and each side part lies against the part beside it.
+    from biceps.engine.layers import CAP_RINGS, HINGE, SECTIONS
+
+    arm = elbow.at_flexion(flexion)
+    parts = arm_parts(arm, SEGMENTS)
+    last = {}
+    for name in (*BICEPS, *EXTENSORS):
+        grid = parts[name].vertices[1:-1].reshape(-1, SEGMENTS, 3)
+        ring, before = grid[CAP_RINGS - 1 + SECTIONS - 1], grid[CAP_RINGS - 1 + SECTIONS - 2]
+        ahead = ring.mean(axis=0) - before.mean(axis=0)
+        ahead /= np.linalg.norm(ahead)
+        wide = HINGE - (ahead @ HINGE) * ahead
+        wide /= np.linalg.norm(wide)
+        flatness = np.ptp(ring @ wide) / np.ptp(ring @ np.cross(ahead, wide))
+        assert flatness >= (1.05 if name == "TRImed" else 1.4), (name, flatness)
+        last[name] = ring
+    for side, middle in (("BIClong", "BICshort"), ("TRIlat", "TRImed"), ("TRIlong", "TRImed")):
+        gaps = np.linalg.norm(last[side][:, None] - last[middle][None], axis=2).min()
+        assert gaps <= 0.1, (side, middle, gaps)
