@@ -320,6 +320,11 @@ def prepare() -> None:
     _solve(reach, ceiling, 0.0, 1.0, GAP, np.full(1, np.nan), one, one,
            np.zeros((1, vertices)), np.zeros(vertices), np.zeros(1), np.ones(1), np.zeros(1),
            1.0, np.ones(1), np.empty((3, vertices)))
+    unit = np.array([[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, -1.0, 0.0]]])
+    axis = np.array([0.0, 0.0, 1.0])
+    _scaled(unit, np.ones(1), axis, axis, axis, np.empty_like(unit))
+    _polygons(np.zeros((1, 3)), np.zeros((1, 3)), np.zeros((1, 3)), one, np.ones(vertices),
+              np.zeros(vertices), np.empty((1, vertices, 3)))
     _grid_normals(np.zeros((2, vertices, 3)), np.zeros(3), np.ones(3),
                   np.empty((2, vertices, 3)))
     axis = np.array([0.0, 1.0, 0.0])
@@ -463,14 +468,34 @@ def _circles(centres: np.ndarray, ahead: np.ndarray, outward: np.ndarray,
              radii: np.ndarray, segments: int) -> np.ndarray:
     """(k, segments, 3) the regular polygons of ``radii`` (k,) about ``centres`` (k, 3),
     square to the unit ``ahead`` (k, 3), vertex 0 towards ``outward`` ((3,) or (k, 3))."""
-    outward = np.broadcast_to(outward, ahead.shape)
-    first = outward - np.einsum("kc,kc->k", outward, ahead)[:, None] * ahead
-    first /= np.linalg.norm(first, axis=1, keepdims=True)
-    second = _cross(ahead, first)
     theta = 2.0 * np.pi * np.arange(segments) / segments
-    spokes = (np.cos(theta)[None, :, None] * first[:, None, :]
-              + np.sin(theta)[None, :, None] * second[:, None, :])
-    return centres[:, None, :] + radii[:, None, None] * spokes
+    polygons = np.empty((len(centres), segments, 3))
+    _polygons(np.ascontiguousarray(centres), np.ascontiguousarray(ahead),
+              np.broadcast_to(outward, ahead.shape).copy(), radii,
+              np.cos(theta), np.sin(theta), polygons)
+    return polygons
+
+
+@ngjit
+def _polygons(centres, ahead, outward, radii, cos, sin, polygons):
+    """Into ``polygons`` (k, s, 3): `_circles`' polygons, their vertices at the angles whose
+    cosines and sines are ``cos`` and ``sin`` (s,) each."""
+    for k in range(polygons.shape[0]):
+        facing = outward[k, 0] * ahead[k, 0] + outward[k, 1] * ahead[k, 1] \
+            + outward[k, 2] * ahead[k, 2]
+        first0 = outward[k, 0] - facing * ahead[k, 0]
+        first1 = outward[k, 1] - facing * ahead[k, 1]
+        first2 = outward[k, 2] - facing * ahead[k, 2]
+        size = np.sqrt(first0 * first0 + first1 * first1 + first2 * first2)
+        first0, first1, first2 = first0 / size, first1 / size, first2 / size
+        second0 = ahead[k, 1] * first2 - ahead[k, 2] * first1
+        second1 = ahead[k, 2] * first0 - ahead[k, 0] * first2
+        second2 = ahead[k, 0] * first1 - ahead[k, 1] * first0
+        for j in range(polygons.shape[1]):
+            along, across = radii[k] * cos[j], radii[k] * sin[j]
+            polygons[k, j, 0] = centres[k, 0] + along * first0 + across * second0
+            polygons[k, j, 1] = centres[k, 1] + along * first1 + across * second1
+            polygons[k, j, 2] = centres[k, 2] + along * first2 + across * second2
 
 
 def _band(centres: np.ndarray, ahead: np.ndarray, outward: np.ndarray, areas: np.ndarray,
@@ -814,17 +839,39 @@ def _with_area(rings: np.ndarray, areas: np.ndarray, normal: np.ndarray) -> np.n
     scaled about its centroid to have its area of ``areas`` (k,)."""
     first = np.array([normal[1], -normal[0], 0.0])  # normal x (0, 0, 1)
     first /= np.linalg.norm(first)
-    second = _cross(normal, first)
-    x, y = rings @ first, rings @ second
-    x1, y1 = _following(x), _following(y)
-    cross = x * y1 - x1 * y
-    area = 0.5 * np.abs(np.sum(cross, axis=1))
-    cx = np.sum((x + x1) * cross, axis=1) / (6.0 * np.sum(cross, axis=1) / 2.0)
-    cy = np.sum((y + y1) * cross, axis=1) / (6.0 * np.sum(cross, axis=1) / 2.0)
-    level = (rings @ normal).mean(axis=1)
-    centroid = (cx[:, None] * first + cy[:, None] * second + level[:, None] * normal)
-    scale = np.sqrt(areas / area)
-    return centroid[:, None, :] + scale[:, None, None] * (rings - centroid[:, None, :])
+    scaled = np.empty_like(rings)
+    _scaled(np.ascontiguousarray(rings), areas, first, _cross(normal, first), normal, scaled)
+    return scaled
+
+
+@ngjit
+def _scaled(rings, areas, first, second, normal, scaled):
+    """Into ``scaled``: `_with_area`'s polygons, ``first``, ``second`` and ``normal`` (3,)
+    each the right-handed frame of their planes. The centroid and area by the shoelace."""
+    segments = rings.shape[1]
+    for k in range(rings.shape[0]):
+        twice = moment_x = moment_y = level = 0.0
+        for j in range(segments):
+            following = (j + 1) % segments
+            x = rings[k, j, 0] * first[0] + rings[k, j, 1] * first[1] + rings[k, j, 2] * first[2]
+            y = rings[k, j, 0] * second[0] + rings[k, j, 1] * second[1] \
+                + rings[k, j, 2] * second[2]
+            x1 = rings[k, following, 0] * first[0] + rings[k, following, 1] * first[1] \
+                + rings[k, following, 2] * first[2]
+            y1 = rings[k, following, 0] * second[0] + rings[k, following, 1] * second[1] \
+                + rings[k, following, 2] * second[2]
+            cross = x * y1 - x1 * y
+            twice += cross
+            moment_x += (x + x1) * cross
+            moment_y += (y + y1) * cross
+            level += rings[k, j, 0] * normal[0] + rings[k, j, 1] * normal[1] \
+                + rings[k, j, 2] * normal[2]
+        cx, cy, level = moment_x / (3.0 * twice), moment_y / (3.0 * twice), level / segments
+        scale = np.sqrt(areas[k] / (0.5 * abs(twice)))
+        for c in range(3):
+            centroid = cx * first[c] + cy * second[c] + level * normal[c]
+            for j in range(segments):
+                scaled[k, j, c] = centroid + scale * (rings[k, j, c] - centroid)
 
 
 def muscle_mesh(laid: Laid, closed: bool) -> Mesh:
