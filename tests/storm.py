@@ -338,7 +338,9 @@ def run_storm(harness: str, model: Path, folder: Path, seconds: float, seed: int
         while terminal.exit_status() is None and time.monotonic() < deadline:
             time.sleep(0.2)
         outcome.exit_status = terminal.exit_status()
-        outcome.shown_at_the_end = terminal.shown()[-3000:]  # an error's last words, if any
+        shown = terminal.shown()
+        outcome.shown_at_the_end = shown[-3000:]  # an error's last words, if any
+        (folder / "shown.txt").write_text(shown)  # all of them: a traceback is longer
     finally:
         terminal.close()
     outcome.model_untouched = copy.read_bytes() == before
