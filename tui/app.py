@@ -46,6 +46,7 @@ from biceps.tui import detect
 from biceps.tui.choose import TEXT, choose, colours, notice
 from biceps.tui.ahead import compile_ahead, lean_once_ready
 from biceps.tui.behind import Backlog, outdated
+from biceps.tui.flow_control import no_flow_control
 from biceps.tui.changes import (
     COARSE_STEP,
     FINE_STEP,
@@ -781,7 +782,8 @@ def run_app(config: Config, colors: str = "auto", fps: float | None = None,
     the model it had (:func:`rescued`)."""
     previous = textual.constants.COLOR_SYSTEM
     try:
-        return _run(config, colors, fps, compile_aside, graphics, pixel_scale)
+        with no_flow_control():
+            return _run(config, colors, fps, compile_aside, graphics, pixel_scale)
     finally:
         textual.constants.COLOR_SYSTEM = previous
 
