@@ -74,7 +74,7 @@ from biceps.tui.pixels import encoder_for
 from biceps.tui.screens.choice import Answer, Choice
 from biceps.tui.screens.help import HelpScreen
 from biceps.tui.screens.main import MainScreen
-from biceps.tui.screens.once import Palette
+from biceps.tui.screens.once import Palette, a_closing_palette_s_fault
 from biceps.tui.screens.prompt import Field, Prompt
 from biceps.tui.screens.record import RecordPrompt, as_recording
 from biceps.tui.suggest import ModelSuggester, PathSuggester
@@ -221,6 +221,8 @@ class BicepsApp(App[None]):
     def _handle_exception(self, error: Exception) -> None:
         # Textual ends the app on an error nothing caught (there is no public hook for it):
         # note it, so that run_app can offer to save the model and exit with an error.
+        if a_closing_palette_s_fault(error):
+            return
         if self.failure is None:
             self.failure = f"{type(error).__name__}: {error}"
         super()._handle_exception(error)

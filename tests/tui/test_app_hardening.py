@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 from textual import events
+from textual.command import CommandList
 from textual.content import Content
 from textual.widgets import Input, Label
 
@@ -126,6 +127,21 @@ async def test_a_click_on_the_palette_after_the_window_shrank_does_nothing(bicep
                                           screen_x=10, screen_y=10))
         await session.pilot.pause()
         assert app.screen is palette
+        assert app.failure is None
+
+
+async def test_the_palette_s_late_timers_as_it_closes_do_not_end_the_app(biceps):
+    # As the palette closes its widgets go first: a timer of its search firing then (to
+    # show it busy, seen in a storm) looked for them, NoMatches, and ended the app.
+    async with biceps() as session:
+        app = session.app
+        await session.pilot.press("ctrl+p")
+        await session.settle()
+        palette = app.screen
+        await palette.query_one(CommandList).remove()  # going, as the palette closes
+        palette._show_busy = True  # what the search's timer sets (a private reactive)
+        await session.pilot.pause()
+        await session.pilot.pause()
         assert app.failure is None
 
 

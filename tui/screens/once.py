@@ -12,7 +12,9 @@ that are dropped.
 The palette has more faults, guarded here too: page down before its list has been laid
 out (ctrl+p then page down at once) looks up a line the list has not made yet, KeyError: 0;
 and a key typed just before it closed starts a search that ends after it has gone, and
-looks for its list there, NoMatches.
+looks for its list there, NoMatches. So do its timers and watchers (the busy indicator,
+"No matches found"), firing as it closes: :func:`a_closing_palette_s_fault` tells the app
+to let those pass.
 """
 
 from __future__ import annotations
@@ -107,3 +109,18 @@ class Palette(CommandPalette, DismissedOnce[None]):
             commands.action_page_down()
         else:
             commands.action_page_up()
+
+
+def a_closing_palette_s_fault(error: BaseException) -> bool:
+    """Whether ``error`` is Textual's command palette looking for a widget of its own
+    (NoMatches) once its widgets have gone, as it closes: a timer or a watcher of its
+    search that fired late. Nothing is lost by letting it pass: the palette is going."""
+    if not isinstance(error, NoMatches):
+        return False
+    frame = error.__traceback__
+    while frame is not None:
+        palette = frame.tb_frame.f_locals.get("self")
+        if isinstance(palette, CommandPalette):
+            return not palette.query(CommandList)
+        frame = frame.tb_next
+    return False
