@@ -1,0 +1,105 @@
+"""The elbow's muscles as actuators: at a pose and an activation, each muscle's forces and its
+torque about the elbow.
+
+Every musculotendon length and moment arm comes from one call, :func:`musculotendon`: the
+length of each muscle's path at that flexion, as the arm computes it, and the moment arm as
+``-dL/dtheta`` of that path (the tendon-excursion method, which is what OpenSim reports),
+so that a better path changes every number here and nothing else. The forces are the
+Hill-type model's at rest (``engine/hill.py``).
+
+Units: lengths and moment arms in cm, forces in N, torques in N m, positive where they
+flex the elbow.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Sequence
+
+import numpy as np
+
+from biceps.engine.hill import HillParameters, equilibrate, stacked
+
+if TYPE_CHECKING:
+    from biceps.engine.arm import Arm
+
+MOMENT_ARM_STEP = 1e-4
+"""Radians either side of the pose at which a path's length is taken for its moment arm
+(a central difference): the path's third derivative makes it 1e-8 cm short at most, and
+rounding adds 1e-11."""
+
+
+def musculotendon(arm: Arm, flexion: float) -> tuple[np.ndarray, np.ndarray]:
+    """Each muscle's musculotendon length and moment arm about the elbow (both (n,) cm, in
+    the order of ``arm.names``) with the elbow at ``flexion`` degrees."""
+    step = math.degrees(MOMENT_ARM_STEP)
+    lengths, moment_arms = [], []
+    for path in arm.paths:
+        lengths.append(path.length_at(flexion))
+        lost = path.length_at(flexion - step) - path.length_at(flexion + step)
+        moment_arms.append(lost / (2.0 * MOMENT_ARM_STEP))
+    return np.array(lengths), np.array(moment_arms)
+
+
+@dataclass(frozen=True)
+class MuscleForce:
+    """One muscle at rest at one pose and activation."""
+
+    name: str
+    length: float  # cm, the whole musculotendon path
+    moment_arm: float  # cm
+    activation: float  # as it acts (raised to the muscle's minimum)
+    fibre_length: float  # cm
+    normalised_fibre_length: float
+    pennation: float  # degrees
+    active_force: float  # N, along the fibre
+    passive_force: float  # N, along the fibre
+    tendon_force: float  # N
+    torque: float  # N m about the elbow, positive flexing
+
+    def record(self) -> dict[str, Any]:
+        """The muscle's numbers as plain data, named with their units."""
+        return {
+            "name": self.name,
+            "activation": self.activation,
+            "musculotendon_length_cm": self.length,
+            "moment_arm_cm": self.moment_arm,
+            "fibre_length_cm": self.fibre_length,
+            "normalised_fibre_length": self.normalised_fibre_length,
+            "pennation_deg": self.pennation,
+            "active_force_n": self.active_force,
+            "passive_force_n": self.passive_force,
+            "tendon_force_n": self.tendon_force,
+            "torque_nm": self.torque,
+        }
+
+
+def torque(tendon_force, moment_arm):
+    """N m from a force in N and a moment arm in cm."""
+    return tendon_force * moment_arm / 100.0
+
+
+def muscle_forces(names: Sequence[str], parameters: Sequence[HillParameters],
+                  lengths: np.ndarray, moment_arms: np.ndarray,
+                  activations) -> list[list[MuscleForce]]:
+    """Every muscle at every pose: ``lengths`` and ``moment_arms`` (k, n) cm for k poses of
+    n muscles (``names``, ``parameters``), ``activations`` one for all or (n,); a list of k
+    poses, each a list of n muscles."""
+    state = equilibrate(stacked(parameters), lengths, activations)
+    torques = torque(state.tendon_force, moment_arms)
+    pennation = np.degrees(state.pennation)
+    return [[MuscleForce(name, *(float(each[k, i]) for each in (
+        lengths, moment_arms, state.activation, state.fibre_length,
+        state.normalised_fibre_length, pennation, state.active_force, state.passive_force,
+        state.tendon_force, torques))) for i, name in enumerate(names)]
+        for k in range(lengths.shape[0])]
+
+
+def forces_across(arm: Arm, parameters: Sequence[HillParameters], flexions: Sequence[float],
+                  activation: float) -> list[list[MuscleForce]]:
+    """Every muscle of ``arm`` at each of ``flexions`` (degrees), all at ``activation``."""
+    geometry = [musculotendon(arm, flexion) for flexion in flexions]
+    lengths = np.array([length for length, _ in geometry]).reshape(len(flexions), -1)
+    moment_arms = np.array([arms for _, arms in geometry]).reshape(len(flexions), -1)
+    return muscle_forces(arm.names, parameters, lengths, moment_arms, activation)
