@@ -176,3 +176,30 @@ the far end (the shoulder blade, above the humeral head); on the forearm, not pa
 ATTACHMENT_REACH = 0.5
 """How far from its bone's axis a muscle may hold on, as a fraction of the bone's length
 (arm26's farthest, the triceps' long head on the shoulder blade, is 0.15 of the humerus)."""
+
+FORCE = Limits(1e-3, 1e5, unit=" N")
+"""A muscle's maximum isometric force (``engine/hill.py``): a millinewton to 100 kN, some
+thirty times the strongest human muscle's."""
+
+FIBRE = Limits(1e-3, 1e4, unit=" cm")
+"""A muscle's optimal fibre length and its tendon's slack length."""
+
+PENNATION = Limits(0, 84, unit=" degrees")
+"""A muscle's pennation at its optimal fibre length: below the model's maximum pennation,
+84.26 degrees, where a fibre can shorten no further."""
+
+STRAIN = Limits(1e-3, 10)
+"""The tendon's strain at the maximum isometric force, and the fibre's at which its passive
+force reaches it."""
+
+SHAPE = Limits(1e-2, 100)
+"""The shapes of the active and passive force-length curves."""
+
+LEAST_ACTIVATION = Limits(0.01, 1)
+"""A muscle's minimum activation: OpenSim's Thelen2003Muscle allows no less than 0.01."""
+
+ACTIVATION = Limits(0, 1)
+"""An activation asked for: none to full."""
+
+MASS = Limits(0, 1e3, unit=" kg")
+"""A mass in the hand."""

@@ -14,7 +14,7 @@ import difflib
 import os
 import re
 import tomllib
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Annotated, Any, Callable, Literal, get_args, get_origin
 
@@ -24,13 +24,20 @@ from pydantic import BaseModel, ConfigDict, Field, PlainValidator, ValidationErr
 
 from biceps.configs import DEFAULT as DEFAULT_CONFIG, FOLDER as BUNDLED
 from biceps.engine.arm import Arm
+from biceps.engine.arm26_forces import CURVES, PARAMETERS, default_parameters
 from biceps.engine.bounds import (
     ANGLE,
     BONE,
     COORDINATE,
+    FIBRE,
+    FORCE,
     GROWTH,
+    LEAST_ACTIVATION,
+    PENNATION,
     RADIUS,
     SCALE,
+    SHAPE,
+    STRAIN,
     Limits,
     OutOfBounds,
     cm,
@@ -43,6 +50,7 @@ from biceps.engine.companion import Companion, reach_problem
 from biceps.engine.cost import model_problem
 from biceps.engine.errors import ConfigError, FileChanged, FileError, RefusedChange
 from biceps.engine.files import read_regular_file, same_file, write_atomically
+from biceps.engine.hill import HillParameters
 from biceps.engine.muscle import Muscle, VolumeMode
 from biceps.engine.names import printable
 from biceps.engine.settings import (
@@ -300,9 +308,27 @@ class RenderTable(_Table):
         return RenderSettings(**self.model_dump())
 
 
+class ForceTable(_Table):
+    """A muscle's Hill-type parameters (``engine/hill.py``), as :class:`HillParameters`: N,
+    cm and degrees. Each one left out is arm26's for a muscle named as one of arm26's six
+    (``engine/arm26_forces.py``); another muscle must give the first four, and takes Thelen's
+    curves as arm26 shapes them."""
+
+    max_isometric_force: Annotated[float, _number(FORCE)] | None = None
+    optimal_fibre_length: Annotated[float, _number(FIBRE)] | None = None
+    tendon_slack_length: Annotated[float, _number(FIBRE)] | None = None
+    pennation: Annotated[float, _number(PENNATION)] | None = None
+    tendon_strain: Annotated[float, _number(STRAIN)] | None = None
+    passive_strain: Annotated[float, _number(STRAIN)] | None = None
+    active_shape: Annotated[float, _number(SHAPE)] | None = None
+    passive_shape: Annotated[float, _number(SHAPE)] | None = None
+    minimum_activation: Annotated[float, _number(LEAST_ACTIVATION)] | None = None
+
+
 class ConfigFile(_Table):
     muscle: MuscleTable
     muscles: dict[MuscleName, CompanionTable] = {}
+    forces: dict[MuscleName, ForceTable] = {}
     skeleton: SkeletonTable = SkeletonTable()
     view: ViewTable = ViewTable()
     light: LightTable = LightTable()
@@ -324,6 +350,21 @@ class Config:
     light: Light
     render: RenderSettings
     source: str
+    forces: dict[str, HillParameters] = field(default_factory=dict)
+    """Each muscle's Hill-type parameters, by name, for the muscles that have them."""
+
+    def force_parameters(self) -> tuple[HillParameters, ...]:
+        """Every muscle's Hill-type parameters, in the order of ``arm.names``; raises
+        :class:`ConfigError` naming a muscle that has none."""
+        missing = [name for name in self.arm.names if name not in self.forces]
+        if missing:
+            name = missing[0]
+            raise ConfigError(
+                f"{printable(self.path)}: the muscle {printable(repr(name))} has no force "
+                f"parameters: arm26 has no muscle of that name ({', '.join(PARAMETERS)}), so "
+                f"give them in a [forces.{printable(name)}] table: max_isometric_force (N), "
+                "optimal_fibre_length and tendon_slack_length (cm), pennation (degrees)")
+        return tuple(self.forces[name] for name in self.arm.names)
 
 
 LARGEST_FILE = 1 << 20
@@ -361,7 +402,7 @@ def _parsed(path: Path, source: str) -> Config:
         raise ConfigError(_describe(path, source, error)) from None
     arm = _build_arm(path, source, table)
     return Config(path, arm, table.view.view(), table.light.light(),
-                  table.render.render_settings(), source)
+                  table.render.render_settings(), source, _forces(path, source, table, arm))
 
 
 def _read_text(path: Path) -> str:
@@ -512,6 +553,39 @@ def _model_path(name: str, skeleton: Skeleton, where: tuple,
                                       f"is named as arm26 names it, one of "
                                       f"{', '.join(arm26.MUSCLES)}"))
     return arm26.path(name)
+
+
+REQUIRED_FORCES = ("max_isometric_force", "optimal_fibre_length", "tendon_slack_length",
+                   "pennation")
+"""The parameters a muscle not named as one of arm26's must give; the rest are Thelen's
+curves, which default to arm26's (the same for its six)."""
+
+
+def _forces(path: Path, source: str, table: ConfigFile, arm: Arm) -> dict[str, HillParameters]:
+    """Each muscle's Hill-type parameters, the ``[forces.NAME]`` tables over arm26's, for
+    every muscle that has them."""
+    for name in table.forces:
+        if name not in arm.names:
+            raise ConfigError(_located(path, source, ("forces", name), (
+                f"no muscle is named {name!r} in this file; its muscles are "
+                f"{', '.join(arm.names)}")))
+    forces = {}
+    for name in arm.names:
+        given = table.forces.get(name, ForceTable()).model_dump(exclude_none=True)
+        default = default_parameters(name)
+        if default is None and not given:
+            continue
+        if default is None:
+            missing = [key for key in REQUIRED_FORCES if key not in given]
+            if missing:
+                keys = ", ".join(missing[:-1]) + (" and " if len(missing) > 1 else "") + missing[-1]
+                raise ConfigError(_located(path, source, ("forces", name), (
+                    f"{keys} {'are' if len(missing) > 1 else 'is'} required: arm26 has no "
+                    f"muscle named {name!r} to take {'them' if len(missing) > 1 else 'it'} "
+                    f"from (its six: {', '.join(PARAMETERS)})")))
+            default = HillParameters(**{key: given[key] for key in REQUIRED_FORCES}, **CURVES)
+        forces[name] = HillParameters(**{**asdict(default), **given})
+    return forces
 
 
 def _companions(table: ConfigFile, skeleton: Skeleton, driver_path: ViaPath | None,

@@ -101,6 +101,14 @@ INVALID_CASES = {
                        "(found 1e+308)",
     "flexion_outside_range.toml": ":2: muscle.flexion: 150 degrees is outside "
                                   "skeleton.flexion_range, 0 to 130",
+    "forces_for_no_muscle.toml": (":5: forces.BRA: no muscle is named 'BRA' in this file; its "
+                                  "muscles are muscle"),
+    "forces_missing_for_a_new_muscle.toml": (
+        ":13: forces.brachialis: max_isometric_force, optimal_fibre_length and "
+        "tendon_slack_length are required: arm26 has no muscle named 'brachialis' to take "
+        "them from (its six: BIClong, BICshort, BRA, TRIlong, TRIlat, TRImed)"),
+    "forces_negative_force.toml": (":6: forces.muscle.max_isometric_force: must be a finite "
+                                   "number from 0.001 to 100000 N (found -3)"),
     "fractional_segments.toml": ":6: render.segments: must be a whole number from 3 to 1024 "
                                 "(found 48.5)",
     "huge_bones.toml": ":6: skeleton.upper_arm: must be a finite number from 1e-06 to 1e+06 cm "
