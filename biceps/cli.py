@@ -30,7 +30,8 @@ import click
 
 from biceps.configs import (DEFAULT as DEFAULT_CONFIG, FOLDER as BUNDLED, file_or_bundled,
                             named as bundled_model)
-from biceps.engine.bounds import ANGLE, COORDINATE, SCALE, OutOfBounds, finite
+from biceps.engine.bounds import (ACTIVATION, ANGLE, COORDINATE, MASS, SCALE, OutOfBounds,
+                                  finite)
 from biceps.engine.errors import BicepsError
 from biceps.engine.names import printable
 from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Colors, Graphics, drawing_threads
@@ -61,6 +62,8 @@ class _FiniteFloat(click.ParamType):
 
 FINITE = _FiniteFloat()
 TURN = _FiniteFloat(ANGLE.low, ANGLE.high)
+ACTIVATION_RANGE = (ACTIVATION.low, ACTIVATION.high)
+MASS_RANGE = (MASS.low, MASS.high)
 
 USAGE_ERROR = 2
 GRAPHICS = list(get_args(Graphics))
@@ -431,8 +434,15 @@ def info(config: Path, length: float | None, flexion: float | None, as_json: boo
 @click.option("--step", type=FINITE, default=10.0, show_default=True, help="Degrees between rows.")
 @click.option("--csv", "form", flag_value="csv", default=True, help="Comma-separated (default).")
 @click.option("--json", "form", flag_value="json", help="A JSON list of rows.")
+@click.option("--activation", type=_FiniteFloat(*ACTIVATION_RANGE), metavar="A",
+              help="Also every muscle's forces at this activation, 0 to 1, at rest (a "
+              "Hill-type model after Thelen 2003, with arm26's parameters unless the config "
+              "gives its own): its musculotendon length and moment arm (cm), fibre length "
+              "(cm), active and passive fibre force and tendon force (N), and torque about "
+              "the elbow (N m, positive flexing); and the elbow's net torque.")
 @_refusals_exit_2
-def sweep(config: Path, start: float | None, stop: float | None, step: float, form: str) -> None:
+def sweep(config: Path, start: float | None, stop: float | None, step: float, form: str,
+          activation: float | None) -> None:
     """One row per elbow angle: length, flexion, moment arm, volume and its error, largest
     radius, girth and every radius. Numbers are exact: the shortest text that reads back as
     the same double."""
@@ -440,23 +450,93 @@ def sweep(config: Path, start: float | None, stop: float | None, step: float, fo
     from biceps.engine.sweep import angles, sweep as sweep_arm
 
     _writable_stdout()  # before any work
-    arm = load_config(config).arm
+    loaded = load_config(config)
+    arm = loaded.arm
+    parameters = loaded.force_parameters() if activation is not None else None
     start, stop = _or_the_whole_range(arm, start, stop)
     flexions = angles(start, stop, step)
     with _progress_bar("sweeping", len(flexions), SLOW_SWEEP) as progress:
         records = [row.record() for row in sweep_arm(arm, flexions, progress)]
+    if parameters is not None:
+        from biceps.engine.actuation import forces_across
+
+        for record, muscles in zip(records, forces_across(arm, parameters, flexions, activation)):
+            record["muscles"] = [muscle.record() for muscle in muscles]
+            record["elbow_torque_nm"] = sum(muscle.torque for muscle in muscles)
     if form == "json":
         _print(json.dumps(records, indent=2, allow_nan=False))
         return
     radii = len(records[0]["radii_cm"])
-    columns = [name for name in records[0] if name != "radii_cm"]
+    columns = [name for name in records[0] if name not in ("radii_cm", "muscles")]
     table = io.StringIO()
     writer = csv.writer(table, lineterminator="\n")
     # repr (which csv uses for a float) is the shortest form that reads back exactly.
-    writer.writerow([*columns, *(f"radius_{i}_cm" for i in range(1, radii + 1))])
+    writer.writerow([*columns, *(f"radius_{i}_cm" for i in range(1, radii + 1)),
+                     *_muscle_columns(records[0])])
     for record in records:
-        writer.writerow([*(record[name] for name in columns), *record["radii_cm"]])
+        writer.writerow([*(record[name] for name in columns), *record["radii_cm"],
+                         *(value for muscle in record.get("muscles", ())
+                           for key, value in muscle.items() if key != "name")])
     _print(table.getvalue().removesuffix("\n"))
+
+
+def _muscle_columns(record: dict[str, Any]) -> list[str]:
+    """The CSV columns of a sweep row's muscles, each named after its muscle:
+    ``BIClong_tendon_force_n``."""
+    return [f"{muscle['name']}_{key}" for muscle in record.get("muscles", ())
+            for key in muscle if key != "name"]
+
+
+@main.command(short_help="The least-effort activations that hold a mass in the hand.")
+@config_argument
+@click.option("--mass", type=_FiniteFloat(*MASS_RANGE), required=True, metavar="KG",
+              help="The mass in the hand, kg, at the forearm's free end.")
+@click.option("--flexion", type=FINITE,
+              help="Elbow flexion in degrees (default: the config's pose).")
+@click.option("--json", "as_json", is_flag=True, help="Print JSON for scripts.")
+@_refusals_exit_2
+def hold(config: Path, mass: float, flexion: float | None, as_json: bool) -> None:
+    """The activations of the muscles in CONFIG that hold MASS kg in the hand still at an
+    elbow angle with the least sum of squared activations (each from its minimum, 0.01, to
+    1), against the load and the forearm's own weight (arm26's 1.53 kg at 18.1 cm from the
+    elbow), the upper arm hanging; or, if the muscles cannot, the strongest torque they
+    give there. Forces from a Hill-type model after Thelen 2003 (arm26's parameters unless
+    the config gives its own). Lengths and moment arms in cm, forces in N, torques in N m
+    about the elbow, positive flexing."""
+    from biceps.engine.config import load_config
+    from biceps.engine.hold import hold_arm
+
+    _writable_stdout()  # before any work
+    loaded = load_config(config)
+    arm = loaded.arm
+    flexion = arm.flexion if flexion is None else flexion
+    arm.at_flexion(flexion)  # refuses an angle outside the joint's range, in words
+    held = hold_arm(arm, loaded.force_parameters(), flexion, mass)
+    facts = {
+        "flexion_deg": flexion,
+        "mass_kg": mass,
+        "load_torque_nm": held.load.torque,
+        "hand_torque_nm": held.load.hand,
+        "forearm_torque_nm": held.load.forearm,
+        "elbow_torque_nm": held.torque,
+        "sum_of_squared_activations": held.cost,
+        "muscles": [muscle.record() for muscle in held.muscles],
+    }
+    if as_json:
+        _print(json.dumps(facts, indent=2, allow_nan=False))
+        return
+    width = max(len(name) for name in arm.names)
+    lines = [
+        f"{printable(config)}: {mass:g} kg in the hand at {flexion:.2f} degrees of flexion\n"
+        f"  load        {held.load.torque:.3f} N m at the elbow: {held.load.hand:.3f} for the "
+        f"mass, {held.load.forearm:.3f} for the forearm's own weight\n"
+        f"  {'muscle':<{width}}  activation  fibre cm  tendon N  torque N m"]
+    lines += [f"  {muscle.name:<{width}}  {muscle.activation:10.4f}  "
+              f"{muscle.fibre_length:8.3f}  {muscle.tendon_force:8.2f}  {muscle.torque:10.3f}"
+              for muscle in held.muscles]
+    lines.append(f"  net torque  {held.torque:.3f} N m; sum of squared activations "
+                 f"{held.cost:.4f}")
+    _print("\n".join(lines))
 
 
 def _or_the_whole_range(arm: Arm, start: float | None, stop: float | None) -> tuple[float, float]:

@@ -254,6 +254,7 @@ COMMANDS = {
     "info": lambda out: ["info"],
     "snapshot": lambda out: ["snapshot", "-o", out / "arm.png", "--size", "64x48"],
     "export-mesh": lambda out: ["export-mesh", "-o", out / "arm.obj"],
+    "hold": lambda out: ["hold", "--mass", "1"],
 }
 
 # Every character a terminal acts on, but the newline that ends a line of the message.
