@@ -26,8 +26,8 @@ if TYPE_CHECKING:
 
 MOMENT_ARM_STEP = 1e-4
 """Radians either side of the pose at which a path's length is taken for its moment arm
-(a central difference): the path's third derivative makes it 1e-8 cm short at most, and
-rounding adds 1e-11."""
+(a central difference): within 1e-8 cm of the exact moment arm (the straight driver's, from
+the law of cosines, over 0 to 130 degrees: 9.5e-9 cm at most)."""
 
 
 def musculotendon(arm: Arm, flexion: float) -> tuple[np.ndarray, np.ndarray]:

@@ -4,8 +4,8 @@ in series with an elastic tendon.
 
 Thelen, "Adjustment of muscle mechanics model parameters to simulate dynamic contractions
 in older adults", J Biomech Eng 125 (2003) 70-77; the curves as OpenSim 4.6 writes them
-(``OpenSim/Actuators/Thelen2003Muscle.cpp``), which ``tests/engine/test_hill.py`` checks
-against OpenSim's own numbers. With ``n`` the fibre length over its optimal length:
+(``OpenSim/Actuators/Thelen2003Muscle.cpp``), which ``tests/engine/test_arm26_forces.py``
+checks against OpenSim's own numbers. With ``n`` the fibre length over its optimal length:
 
 - active force-length: ``fal(n) = exp(-(n - 1)^2 / active_shape)``;
 - passive force-length: ``fpe(n) = (exp(passive_shape (n - 1) / passive_strain) - 1) /
@@ -153,73 +153,65 @@ def equilibrate(p: HillParameters, length, activation) -> Equilibrium:
         p.height / math.tan(MAXIMUM_PENNATION))  # low: the shortest fibre, along the tendon
     acting = np.clip(activation, p.minimum_activation, 1.0)
     high = length - p.tendon_slack_length  # the tendon just slack
-    error, slope = _balance(p, length, acting, low)
-    clamped = (high <= low) | (error >= 0.0)
+    clamped = (high <= low) | (_Balance(p, length, acting, low).error >= 0.0)
     high = np.where(clamped, low, high)
     # OpenSim's starting point: the tendon 1 % past slack.
     along = np.clip(length - 1.01 * p.tendon_slack_length, low, high)
     tolerance = FORCE_TOLERANCE * p.max_isometric_force
     for _ in range(MOST_STEPS):
-        error, slope = _balance(p, length, acting, along)
+        balance = _Balance(p, length, acting, along)
+        error = balance.error
         done = clamped | (np.abs(error) <= tolerance) | (high - low <= LENGTH_TOLERANCE)
         if done.all():
             break
         low = np.where(error < 0.0, along, low)
         high = np.where(error > 0.0, along, high)
         with np.errstate(divide="ignore", invalid="ignore"):
-            newton = along - error / slope
+            newton = along - error / balance.slope
         inside = np.isfinite(newton) & (newton > low) & (newton < high)
         along = np.where(done, along, np.where(inside, newton, 0.5 * (low + high)))
-    return _state(p, length, activation, acting, along, clamped)
-
-
-def _geometry(p: HillParameters, along: np.ndarray):
-    """The fibre's length (cm) and its pennation's cosine for a length ``along`` the tendon."""
-    fibre = np.hypot(along, p.height)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return fibre, np.where(p.height == 0.0, 1.0, along / fibre)
-
-
-def _balance(p: HillParameters, length, acting, along) -> tuple[np.ndarray, np.ndarray]:
-    """The force error (N, the fibre's pull along the tendon less the tendon's) with the
-    fibre ``along`` cm along the tendon, and its slope in ``along`` (N/cm)."""
-    fibre, cosine = _geometry(p, along)
-    n = fibre / p.optimal_fibre_length
-    fal, fal_slope = active_force_length(n, p)
-    fpe, fpe_slope = passive_force_length(n, p)
-    fse, fse_slope = tendon_force_strain((length - along) / p.tendon_slack_length - 1.0, p)
-    fibre_force = acting * fal + fpe
-    # d(fibre)/d(along) = cos(phi); d(cos(phi))/d(along) = h^2 / fibre^3.
-    with np.errstate(divide="ignore", invalid="ignore"):
-        bending = np.where(fibre > 0.0, p.height ** 2 / fibre ** 3, 0.0)
-    slope = ((acting * fal_slope + fpe_slope) / p.optimal_fibre_length * cosine ** 2
-             + fibre_force * bending + fse_slope / p.tendon_slack_length)
-    fmax = p.max_isometric_force
-    return fmax * (fibre_force * cosine - fse), fmax * slope
-
-
-def _state(p: HillParameters, length, activation, acting, along, clamped) -> Equilibrium:
-    fibre, cosine = _geometry(p, along)
-    n = fibre / p.optimal_fibre_length
-    fal, _ = active_force_length(n, p)
-    fpe, _ = passive_force_length(n, p)
-    fse, fse_slope = tendon_force_strain((length - along) / p.tendon_slack_length - 1.0, p)
-    error, slope = _balance(p, length, acting, along)
+    else:
+        balance = _Balance(p, length, acting, along)
     fmax = p.max_isometric_force
     # Implicitly: d(error)/d(activation) = Fmax fal cos(phi) moves the fibre by -that/slope,
     # and the tendon's force by Fmax fse' / tendon_slack_length per cm the fibre shortens.
     # Nothing moves with a clamped fibre, nor below the minimum activation.
     with np.errstate(divide="ignore", invalid="ignore"):
-        per_activation = fmax * fse_slope / p.tendon_slack_length * fmax * fal * cosine / slope
+        per_activation = (fmax * balance.fse_slope / p.tendon_slack_length
+                          * fmax * balance.fal * balance.cosine / balance.slope)
     moving = ~clamped & (activation >= p.minimum_activation)
     return Equilibrium(
         activation=acting,
-        fibre_length=fibre,
-        normalised_fibre_length=n,
-        pennation=np.arccos(np.clip(cosine, -1.0, 1.0)),
-        active_force=fmax * acting * fal,
-        passive_force=fmax * fpe,
-        tendon_force=fmax * fse,
+        fibre_length=balance.fibre,
+        normalised_fibre_length=balance.fibre / p.optimal_fibre_length,
+        pennation=np.arccos(np.clip(balance.cosine, -1.0, 1.0)),
+        active_force=fmax * acting * balance.fal,
+        passive_force=fmax * balance.fpe,
+        tendon_force=fmax * balance.fse,
         force_per_activation=np.where(moving, per_activation, 0.0),
-        error=error,
+        error=balance.error,
     )
+
+
+class _Balance:
+    """Fibre and tendon with the fibre ``along`` cm along the tendon: the fibre's length
+    (cm) and its pennation's cosine, the curves' values there, the force error (N, the
+    fibre's pull along the tendon less the tendon's) and its slope in ``along`` (N/cm)."""
+
+    def __init__(self, p: HillParameters, length, acting, along) -> None:
+        self.fibre = np.hypot(along, p.height)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            self.cosine = np.where(p.height == 0.0, 1.0, along / self.fibre)
+            # d(fibre)/d(along) = cos(phi); d(cos(phi))/d(along) = h^2 / fibre^3.
+            bending = np.where(self.fibre > 0.0, p.height ** 2 / self.fibre ** 3, 0.0)
+        n = self.fibre / p.optimal_fibre_length
+        self.fal, fal_slope = active_force_length(n, p)
+        self.fpe, fpe_slope = passive_force_length(n, p)
+        self.fse, self.fse_slope = tendon_force_strain(
+            (length - along) / p.tendon_slack_length - 1.0, p)
+        fibre_force = acting * self.fal + self.fpe
+        fmax = p.max_isometric_force
+        self.error = fmax * (fibre_force * self.cosine - self.fse)
+        self.slope = fmax * ((acting * fal_slope + fpe_slope) / p.optimal_fibre_length
+                             * self.cosine ** 2 + fibre_force * bending
+                             + self.fse_slope / p.tendon_slack_length)
