@@ -158,6 +158,15 @@ class _VolumeLaw:
         return segments * room / spaced
 
 
+def volume_step(radii: np.ndarray, growth: np.ndarray, length: float, target: float,
+                mode: VolumeMode = "closed") -> float | None:
+    """The step ``d`` at which ``radii + d growth`` (both (n,)) over ``length`` cm has the
+    volume ``target`` cm^3, every radius positive; None if there is none. The length
+    change's own solve (SPEC 2.2), for a shape other than a rest."""
+    law = _VolumeLaw.of(radii, growth, mode == "closed")
+    return law.solve(target / np.pi, length / (len(radii) - 1))
+
+
 @dataclass(frozen=True, eq=False)
 class _Rest:
     """The reference shape a muscle is solved from. Every length of one muscle shares it,

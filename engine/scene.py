@@ -25,6 +25,7 @@ from biceps.engine.jit import exact, ngjit
 from biceps.engine.mesh import Mesh
 from biceps.engine.render import Renderer
 from biceps.engine.settings import SUPERSAMPLING, RenderSettings, View
+from biceps.engine.tension import tensed_arm
 from biceps.engine.transforms import (Camera, Light, model_matrix, scale_matrix,
                                       transform_points, translation_matrix)
 
@@ -65,6 +66,9 @@ class Scene:
     selected: int = 0  # which of the arm's muscles the node table edits (0: the driver)
     marked: bool = False  # the picture marks the pick (`marked_albedo`), as the app's do
     picked_node: int | None = None  # the selected muscle's node ringed, if marked
+    # Each muscle's activation, 0 to 1, in the order of the arm's names; none: all at rest.
+    # An active belly is drawn tensed (engine/tension.py), and coloured by it if asked.
+    activations: tuple[float, ...] = ()
 
     @classmethod
     def of(cls, config: Config) -> Scene:
@@ -98,6 +102,10 @@ class Scene:
         """The scene with muscle ``name`` hidden or shown."""
         return replace(self, hidden=self.hidden | {name} if hide else self.hidden - {name})
 
+    def with_activations(self, activations: tuple[float, ...]) -> Scene:
+        """The scene with each muscle at its activation (in the order of the arm's names)."""
+        return replace(self, activations=tuple(float(a) for a in activations))
+
 
 COMPANION_DETAIL = 2 / 3
 """The share of the render's segments drawn round each companion (48 -> 32): the pictures'
@@ -118,12 +126,16 @@ Spans = dict[str, tuple[int, int]]
 """Each part's vertices in a scene's mesh, by its name: the first and one past the last."""
 
 
-def scene_mesh(arm: Arm, render: RenderSettings,
-               hidden: frozenset[str] = frozenset()) -> tuple[Mesh, np.ndarray, Spans]:
+def scene_mesh(arm: Arm, render: RenderSettings, hidden: frozenset[str] = frozenset(),
+               activations: tuple[float, ...] = ()) -> tuple[Mesh, np.ndarray, Spans]:
     """The arm as one world-space mesh, its per-vertex albedo (n, 3) float32 in [0, 1] and
     its parts' spans: the bones in the bone colour, each muscle not ``hidden`` with its
-    belly in its own colour (or its strain's, see `strain_colour`) blending into the tendon
-    colour towards its ends."""
+    belly in its own colour (or its strain's, see `strain_colour`, or its activation's,
+    `activation_colour`) blending into the tendon colour towards its ends; each belly
+    tensed by its activation (``activations`` in the order of the arm's names, none for a
+    muscle at rest)."""
+    strains = [muscle.length / muscle.reference_length - 1.0 for muscle in arm.muscles]
+    arm = tensed_arm(arm, activations)
     parts = arm_parts(arm, render.segments, hidden, companion_segments(render.segments))
     ends = np.cumsum([len(mesh.vertices) for mesh in parts.values()])
     spans = dict(zip(parts, zip([0, *ends[:-1]], ends)))
@@ -134,11 +146,16 @@ def scene_mesh(arm: Arm, render: RenderSettings,
     tendon_colour = _unit_rgb(render.tendon_colour)
     colours = (render.muscle_colour, *(companion.colour for companion in arm.companions))
     flexion = arm.flexion  # worked out from the length at each read: 9 us
-    for name, muscle, path, colour in zip(arm.names, arm.muscles, arm.paths, colours):
+    for index, (name, muscle, path, colour) in enumerate(
+            zip(arm.names, arm.muscles, arm.paths, colours)):
         if name in hidden:
             continue
-        belly = (strain_colour(muscle.length / muscle.reference_length - 1.0)
-                 if render.colour_by == "strain" else _unit_rgb(colour))
+        if render.colour_by == "strain":
+            belly = strain_colour(strains[index])
+        elif render.colour_by == "activation":
+            belly = activation_colour(activations[index] if activations else 0.0)
+        else:
+            belly = _unit_rgb(colour)
         tendon = tendon_share(muscle, path, flexion, parts[name])
         not_tendon = 1.0 - tendon
         start, end = spans[name]
@@ -192,6 +209,19 @@ def strain_colour(strain: float) -> np.ndarray:
     amount = min(abs(strain) / STRAIN_SPAN, 1.0)
     end = _WARM if strain < 0 else _COOL
     return (1.0 - amount) * _NEUTRAL + amount * end
+
+
+_AMBER = np.array([0.98, 0.70, 0.15], dtype=np.float32)
+_RED = np.array([0.85, 0.08, 0.10], dtype=np.float32)
+
+
+def activation_colour(activation: float) -> np.ndarray:
+    """(3,) float32 in [0, 1]: a muscle's colour at ``activation`` (0 to 1): neutral at rest,
+    amber at half, red at full (a sequential scale, as a heat map)."""
+    amount = min(max(activation, 0.0), 1.0)
+    if amount <= 0.5:
+        return (1.0 - 2.0 * amount) * _NEUTRAL + 2.0 * amount * _AMBER
+    return (2.0 - 2.0 * amount) * _AMBER + (2.0 * amount - 1.0) * _RED
 
 
 def _unit_rgb(colour: str) -> np.ndarray:
@@ -391,9 +421,9 @@ class SceneRenderer:
         # The arm compares its muscle by identity (a new muscle is a new object), and the
         # key holds the arm, so the identity cannot be reused by another.
         key = (scene.arm, render.segments, render.muscle_colour, render.tendon_colour,
-               render.bone_colour, render.colour_by, scene.hidden)
+               render.bone_colour, render.colour_by, scene.hidden, scene.activations)
         if key != self._mesh_key:
-            self._mesh = scene_mesh(scene.arm, render, scene.hidden)
+            self._mesh = scene_mesh(scene.arm, render, scene.hidden, scene.activations)
             self._outline = outline(self._mesh[0].vertices)
             self._mesh_key = key
         return self._mesh

@@ -36,8 +36,9 @@ Colors = Literal["auto", "truecolor", "256"]
 """The colours the picture goes out in: 24-bit, xterm's 256, or ``auto``, what the terminal
 answers that it keeps (``tui/choose.py``)."""
 
-ColourBy = Literal["muscle", "strain"]
-"""What colours each muscle's belly: its own colour, or how far it is from its rest length."""
+ColourBy = Literal["muscle", "strain", "activation"]
+"""What colours each muscle's belly: its own colour, how far it is from its rest length, or
+how active it is."""
 
 COLOUR = "#[0-9a-fA-F]{6}"
 """A whole colour, ``#rrggbb``, as a regular expression."""
@@ -161,8 +162,9 @@ class RenderSettings:
     the supersampling factor (``ssaa`` x ``ssaa`` samples a pixel), the colours (the
     muscle's belly, its tendons, the bones, the background), how the app sends it to
     the terminal (``graphics``) and in which colours (``colors``), and whether each muscle
-    shows its own colour or its strain (``colour_by``: "strain" is warm where a muscle is
-    shorter than at rest, cool where longer)."""
+    shows its own colour, its strain or its activation (``colour_by``: "strain" is warm
+    where a muscle is shorter than at rest, cool where longer; "activation" pale at rest,
+    amber to red as it works)."""
 
     segments: int = 48
     shading: str = "gouraud"
