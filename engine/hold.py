@@ -177,3 +177,42 @@ def _check_reach(parameters, lengths, moment_arms, load: Load, low, high) -> Non
                             f"{most:.2f} N m (every flexor fully active){heaviest}")
     raise RefusedChange(f"{what}, but the muscles' passive pull flexes it by {least:.2f} N m "
                         "even with every extensor fully active")
+
+
+@dataclass(frozen=True)
+class Effort:
+    """What the muscles do at a pose when asked for an activation or to hold a mass: every
+    muscle (its activation, forces, torque), the load when there is a mass, and why it
+    cannot be held when it cannot (the muscles then at their strongest)."""
+
+    muscles: list[MuscleForce]
+    load: Load | None = None
+    refusal: str | None = None
+
+    @property
+    def activations(self) -> tuple[float, ...]:
+        return tuple(muscle.activation for muscle in self.muscles)
+
+    @property
+    def torque(self) -> float:
+        """The muscles' net torque about the elbow (N m)."""
+        return sum(muscle.torque for muscle in self.muscles)
+
+
+def effort(arm: Arm, parameters: Sequence[HillParameters], activation: float,
+           mass: float) -> Effort:
+    """The muscles of ``arm`` at its flexion: each at ``activation``, or, with a ``mass``
+    (kg, above 0) in the hand, at the least-effort activations that hold it."""
+    flexion = arm.flexion
+    lengths, moment_arms = musculotendon(arm, flexion)
+    if mass <= 0.0:
+        return Effort(muscle_forces(arm.names, parameters, lengths[None, :],
+                                    moment_arms[None, :], activation)[0])
+    load = load_at(arm.skeleton.forearm, flexion, mass)
+    try:
+        held = hold(arm.names, parameters, lengths, moment_arms, load)
+    except RefusedChange as refusal:
+        strongest = np.where(moment_arms > 0.0, 1.0, [p.minimum_activation for p in parameters])
+        return Effort(muscle_forces(arm.names, parameters, lengths[None, :],
+                                    moment_arms[None, :], strongest)[0], load, str(refusal))
+    return Effort(held.muscles, load)

@@ -19,8 +19,10 @@ import numpy as np
 from biceps.engine import coldstart
 from biceps.engine.anatomy import arm_parts, node_places, tendon_share
 from biceps.engine.arm import Arm
+from biceps.engine.bounds import ACTIVATION, MASS
 from biceps.engine.config import Config, rgb
 from biceps.engine.cost import check_picture
+from biceps.engine.errors import RefusedChange
 from biceps.engine.jit import exact, ngjit
 from biceps.engine.mesh import Mesh
 from biceps.engine.render import Renderer
@@ -66,8 +68,13 @@ class Scene:
     selected: int = 0  # which of the arm's muscles the node table edits (0: the driver)
     marked: bool = False  # the picture marks the pick (`marked_albedo`), as the app's do
     picked_node: int | None = None  # the selected muscle's node ringed, if marked
-    # Each muscle's activation, 0 to 1, in the order of the arm's names; none: all at rest.
-    # An active belly is drawn tensed (engine/tension.py), and coloured by it if asked.
+    # What the muscles are asked to do: every one at ``activation`` (0 to 1), or, with a
+    # ``mass`` (kg) in the hand, hold it with the least effort (engine/hold.py).
+    activation: float = 0.0
+    mass: float = 0.0
+    # Each muscle's activation that follows, 0 to 1, in the order of the arm's names; none:
+    # all at rest. An active belly is drawn tensed (engine/tension.py), and coloured by it
+    # if asked.
     activations: tuple[float, ...] = ()
 
     @classmethod
@@ -101,6 +108,17 @@ class Scene:
     def with_hidden(self, name: str, hide: bool) -> Scene:
         """The scene with muscle ``name`` hidden or shown."""
         return replace(self, hidden=self.hidden | {name} if hide else self.hidden - {name})
+
+    def with_effort(self, activation: float | None = None, mass: float | None = None) -> Scene:
+        """The scene with the muscles asked for another ``activation`` or to hold another
+        ``mass``, each within its bounds (``engine/bounds.py``), or :class:`RefusedChange`."""
+        activation = self.activation if activation is None else activation
+        mass = self.mass if mass is None else mass
+        for value, limits, what in ((activation, ACTIVATION, "an activation"),
+                                    (mass, MASS, "a mass in the hand")):
+            if not limits.allows(value):
+                raise RefusedChange(f"{what} is {limits.of('')}, not {value:g}")
+        return replace(self, activation=float(activation), mass=float(mass))
 
     def with_activations(self, activations: tuple[float, ...]) -> Scene:
         """The scene with each muscle at its activation (in the order of the arm's names)."""

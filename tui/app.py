@@ -16,7 +16,7 @@ from dataclasses import replace
 from functools import partial
 from pathlib import Path
 from time import monotonic
-from typing import Awaitable, Callable
+from typing import Awaitable, Callable, get_args
 
 import textual.constants
 from rich.console import RenderableType
@@ -40,8 +40,10 @@ from biceps.engine.cost import check_model, check_picture
 from biceps.engine.errors import BicepsError, FileChanged
 from biceps.engine.export import check_writable, parse_size, write_png
 from biceps.engine.files import same_file
+from biceps.engine.hold import Effort, effort
 from biceps.engine.names import printable
 from biceps.engine.scene import Scene, SceneRenderer, supersampling
+from biceps.engine.settings import ColourBy
 from biceps.tui import detect
 from biceps.tui.choose import TEXT, choose, colours, notice
 from biceps.tui.ahead import compile_ahead, lean_once_ready
@@ -49,11 +51,14 @@ from biceps.tui.behind import Backlog, outdated
 from biceps.tui.flow_control import no_flow_control
 from biceps.tui.changes import (
     COARSE_STEP,
+    EFFORT_STEP,
     FINE_STEP,
     LIGHT_STEP,
+    MASS_STEP,
     MOVE_STEP,
     SLOW_NODES,
     TURN_STEP,
+    effort_changed,
     fitted,
     has_unsaved_edits,
     length_changed,
@@ -92,12 +97,17 @@ DRAG_TURN = 180.0  # degrees per picture height
 DRAG_MOVE = 70.0  # cm per picture height
 
 TURN = Binding.Group("Turn", compact=True)
+FORCES = Binding.Group("Forces", compact=True)
 ARROWS = [  # key, yaw, pitch, what it does
     ("left", -TURN_STEP, 0, "Turn left"),
     ("right", TURN_STEP, 0, "Turn right"),
     ("up", 0, -TURN_STEP, "Tip the top away"),
     ("down", 0, TURN_STEP, "Tip the top towards you"),
 ]
+
+
+COLOURINGS = get_args(ColourBy)
+"""What ``b`` cycles the muscles' colours through."""
 
 
 class QuitAsked(Message):
@@ -140,7 +150,13 @@ class BicepsApp(App[None]):
         Binding("t", "next_muscle(1)", "Next muscle", show=False),
         Binding("T", "next_muscle(-1)", "Previous muscle", show=False),
         Binding("y", "hide_muscle", "Hide or show the muscle", show=False),
-        Binding("b", "switch_colours", "Colours: each muscle's own or its strain", show=False),
+        Binding("b", "switch_colours", "Colours: each muscle's own, its strain or its activation",
+                show=False),
+        # One footer entry for both, as the arrows': the footer is full at 80 columns.
+        Binding("greater_than_sign", f"effort({EFFORT_STEP}, 0)", "Activate", group=FORCES),
+        Binding("less_than_sign", f"effort({-EFFORT_STEP}, 0)", "Relax", show=False),
+        Binding("right_curly_bracket", f"effort(0, {MASS_STEP})", "Weight", group=FORCES),
+        Binding("left_curly_bracket", f"effort(0, {-MASS_STEP})", "Lighter weight", show=False),
         Binding("r", "reset_view", "Reset the view", show=False),
         Binding("g", "switch_shading", "Shading: Gouraud or Phong", show=False),
         Binding("m", "switch_antialiasing", "Anti-aliasing on or off", show=False),
@@ -162,6 +178,7 @@ class BicepsApp(App[None]):
 
     scene: var[Scene] = var(None)
     unsaved: var[bool] = var(False)
+    effort: var[Effort | None] = var(None)  # what the muscles do, once asked to work
 
     def __init__(self, config: Config, fps: float | None = None,
                  encoder: PictureEncoder | None = None, notice: str | None = None,
@@ -198,6 +215,7 @@ class BicepsApp(App[None]):
         self._notified_until: dict[str, float] = {}
         self._saving = asyncio.Lock()
         self._asking = False  # a dialog is open, or about to open (see _ask)
+        self._effort_for: tuple | None = None  # the arm and what was asked of its muscles
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         # On the 'too small' screen nothing is seen to change, so nothing changes: only
@@ -332,6 +350,43 @@ class BicepsApp(App[None]):
         # with the saved one at each step of a held key (0.3 ms with elbow.toml's six).
         if scene.arm is not old.arm:
             self.unsaved = has_unsaved_edits(scene, self._saved)
+        self._follow_effort(scene)
+
+    def _follow_effort(self, scene: Scene) -> None:
+        """Work out, in a thread, what the muscles do in ``scene``'s pose when asked to work;
+        forget it when they are not."""
+        asked = (scene.activation, scene.mass)
+        if self._effort_for is not None and scene.arm is self._effort_for[0] \
+                and asked == self._effort_for[1]:
+            return
+        self._effort_for = (scene.arm, asked)
+        parameters = None
+        if asked != (0.0, 0.0):
+            try:
+                parameters = self.config.force_parameters()
+            except BicepsError as error:
+                self._refuse(str(error))
+        if parameters is None:
+            self.effort = None
+            if scene.activations:
+                self.scene = scene.with_activations(())
+            return
+        self._find_effort(scene, parameters)
+
+    @work(thread=True, exclusive=True, group="effort")
+    def _find_effort(self, scene: Scene, parameters: tuple) -> None:
+        found = effort(scene.arm, parameters, scene.activation, scene.mass)
+        self.call_from_thread(self._found_effort, scene, found)
+
+    def _found_effort(self, scene: Scene, found: Effort) -> None:
+        now = self.scene
+        if now.arm is not scene.arm or (now.activation, now.mass) != (scene.activation,
+                                                                      scene.mass):
+            return  # asked again since: that answer is on its way
+        self.effort = found
+        self.scene = now.with_activations(found.activations)
+        if found.refusal is not None:
+            self._refuse(found.refusal)
 
     def notify(
         self,
@@ -460,10 +515,36 @@ class BicepsApp(App[None]):
                     markup=False)
 
     def action_switch_colours(self) -> None:
-        strain = self.scene.render.colour_by != "strain"
-        self._change(lambda scene: scene.with_render(colour_by="strain" if strain else "muscle"))
-        self.notify("Colours: strain, warm where a muscle is shorter than at rest, cool where "
-                    "longer" if strain else "Colours: each muscle's own", markup=False)
+        following = COLOURINGS[(COLOURINGS.index(self.scene.render.colour_by) + 1)
+                               % len(COLOURINGS)]
+        self._change(lambda scene: scene.with_render(colour_by=following))
+        self.notify({
+            "muscle": "Colours: each muscle's own",
+            "strain": "Colours: strain, warm where a muscle is shorter than at rest, cool "
+                      "where longer",
+            "activation": "Colours: activation, pale at rest, amber to red as a muscle works "
+                          "(> and } ask them to)",
+        }[following], markup=False)
+
+    def action_effort(self, activation: float, mass: float) -> None:
+        """Ask every muscle for ``activation`` more (0 to 1), or the muscles to hold ``mass``
+        kg more in the hand (0 to let go), which then takes over from the activation."""
+        try:
+            self.config.force_parameters()
+        except BicepsError as error:
+            self._refuse(str(error))
+            return
+        before = self.scene
+        self._change(partial(effort_changed, activation=activation, mass=mass))
+        scene = self.scene
+        if scene is before:
+            return
+        if mass:
+            self.notify(f"Holding {scene.mass:g} kg in the hand" if scene.mass
+                        else "The hand let go", markup=False)
+        elif scene.mass:
+            self.notify(f"The muscles hold {scene.mass:g} kg, whatever the activation: "
+                        "{ lets go of it", markup=False)
 
     def action_switch_antialiasing(self) -> None:
         self._change(with_antialiasing_switched)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from biceps.engine.arm import Arm
+from biceps.engine.bounds import ACTIVATION, MASS
 from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import Muscle
 from biceps.engine.scene import Scene
@@ -20,6 +21,8 @@ LIGHT_STEP = 10.0  # cm per key press
 ZOOM_FACTOR = 1.1  # per key press or wheel notch
 SMALLEST_SCALE, LARGEST_SCALE = 0.1, 20.0
 FINE_STEP, COARSE_STEP = 0.1, 1.0  # cm of muscle length per contract or stretch
+EFFORT_STEP = 0.1  # activation per key press
+MASS_STEP = 1.0  # kg in the hand per key press
 _ROUNDING = 1e-12
 # What a drag is rounded to: finer than a drag of one cell moves (some degrees, some
 # millimetres), coarse enough that a saved file says yaw = 13.8, not 13.783785.
@@ -74,6 +77,22 @@ def light_moved(scene: Scene, x: float = 0.0, y: float = 0.0, z: float = 0.0) ->
     """The light moved by (x, y, z) cm in world space."""
     lx, ly, lz = scene.light.position
     return scene.with_light(position=(_tidy(lx + x), _tidy(ly + y), _tidy(lz + z)))
+
+
+def effort_changed(scene: Scene, activation: float = 0.0, mass: float = 0.0) -> Scene:
+    """The muscles asked for ``activation`` more, or to hold ``mass`` kg more in the hand,
+    stopping at the bounds (``engine/bounds.py``); :class:`RefusedChange` saying so if
+    already there."""
+    wanted = (_tidy(min(max(scene.activation + activation, ACTIVATION.low), ACTIVATION.high)),
+              _tidy(min(max(scene.mass + mass, MASS.low), MASS.high)))
+    if wanted == (scene.activation, scene.mass):
+        if activation:
+            raise RefusedChange("Every muscle is fully active already: activation 1"
+                                if activation > 0 else
+                                "Every muscle is at rest already: activation 0")
+        raise RefusedChange(f"The hand holds the most it may already, {MASS.high:g} kg"
+                            if mass > 0 else "The hand holds nothing already")
+    return scene.with_effort(*wanted)
 
 
 def with_shading_switched(scene: Scene) -> Scene:

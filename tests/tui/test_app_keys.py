@@ -61,6 +61,8 @@ def test_every_key_of_the_main_screen_is_tested():
     }  # fmt: skip
     tested |= {"p", "v"}  # test_app_plots.py, test_app_record.py
     tested |= {"t", "T", "y", "b"}  # test_app_muscles.py
+    tested |= {"greater_than_sign", "less_than_sign", "right_curly_bracket",
+               "left_curly_bracket"}  # test_app_forces.py
     bound = {key for binding in BicepsApp.BINDINGS for key in binding.key.split(",")}
     assert bound <= tested
 

@@ -114,6 +114,8 @@ async def test_b_colours_the_muscles_by_strain(biceps, elbow):
         await session.pilot.press("b")
         assert session.app.scene.render.colour_by == "strain"
         await session.settle()
+        await session.pilot.press("b")  # by activation: tests/tui/test_app_forces.py
+        assert session.app.scene.render.colour_by == "activation"
         await session.pilot.press("b")
         assert session.app.scene.render.colour_by == "muscle"
 

@@ -104,6 +104,8 @@ WRITTEN = {
     "shift+up": "shift+↑", "shift+down": "shift+↓",
     "left_square_bracket": "[", "right_square_bracket": "]", "plus": "+", "equals_sign": "=",
     "minus": "-", "question_mark": "?", "slash": "/",
+    "greater_than_sign": ">", "less_than_sign": "<", "right_curly_bracket": "}",
+    "left_curly_bracket": "{",
 }  # fmt: skip
 
 

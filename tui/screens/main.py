@@ -16,16 +16,19 @@ from textual.widget import Widget
 from textual.widgets import Static
 
 from biceps.engine.arm import Arm
+from biceps.engine.hold import Effort
 from biceps.engine.scene import Scene
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.pacing import Pacer
 from biceps.tui.pixels import ImageEncoder
 from biceps.tui.screens.sized import LatestSize
 from biceps.tui.widgets.footer import FittedFooter
+from biceps.tui.widgets.forces import Forces
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.recorder import Recorder
 from biceps.tui.widgets.stats import Stats
+from biceps.tui.widgets.torque_plot import TorquePlot
 from biceps.tui.widgets.viewport import Viewport
 
 # Below this the side panel leaves the picture a sliver and the table a few rows.
@@ -65,6 +68,7 @@ class MainScreen(LatestSize[None]):
             yield Viewport(self._pacer, id="viewport", encoder=self._encoder)
             with Vertical(id="side"):
                 yield Stats(id="stats")
+                yield Forces(id="forces")
                 yield NodeTable(id="nodes")
         yield Plots(id="plots")
         yield Recorder(id="recorder")
@@ -80,6 +84,7 @@ class MainScreen(LatestSize[None]):
         self.watch(self.app, "scene", self._show_scene)
         self.watch(self.app, "unsaved", self._show_file)
         self.watch(self.app, "sub_title", self._show_file)
+        self.watch(self.app, "effort", self._show_effort)
 
     def on_screen_suspend(self, event: ScreenSuspend) -> None:
         self.query_one(Viewport).hide_image()
@@ -149,6 +154,12 @@ class MainScreen(LatestSize[None]):
             self.query_one(Stats).show(arm, selected)
             self.query_one(NodeTable).show(arm.muscles[selected])
             self.query_one(Plots).show(arm)
+
+    def _show_effort(self, effort: Effort | None) -> None:
+        scene = self.app.scene
+        self.query_one(Forces).show(effort, scene.activation, scene.mass)
+        parameters = self.app.config.force_parameters() if effort is not None else ()
+        self.query_one(TorquePlot).show(scene.arm, parameters, effort, scene.mass)
 
     def _show_file(self) -> None:
         # Content, not a str: a str is read as markup, and a file may be named [b]x.toml,

@@ -25,6 +25,7 @@ from biceps.engine.muscle import Muscle
 from biceps.engine.reference import Curve, arm26_biclong
 from biceps.engine.skeleton import Skeleton
 from biceps.engine.sweep import Row, angles, flexion_range, sweep
+from biceps.tui.widgets.torque_plot import TorquePlot
 
 CURVE_POINTS = 121
 """About one a degree across the joint's range: more than a panel has columns of braille
@@ -80,6 +81,7 @@ class Plots(Horizontal):
             plot = PlotextPlot(id=name)
             plot.border_title, plot.border_subtitle = title, subtitle
             yield plot
+        yield TorquePlot(id="torque")  # once the muscles are asked to work
 
     def show(self, arm: Arm) -> None:
         """Draw the plots of ``arm``: now if they are shown, else once they are. (The sweep

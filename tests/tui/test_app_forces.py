@@ -1,0 +1,176 @@
+"""Forces in the app: the muscles asked for an activation or to hold a weight, their numbers
+in the side panel, their tension and colour in the picture, the torque plot."""
+
+import shutil
+
+import numpy as np
+import pytest
+
+from biceps.configs import FOLDER
+from biceps.engine.config import load_config
+from biceps.engine.hold import hold_arm
+from biceps.tui.commands import KeyCommands
+from biceps.tui.widgets.forces import Forces
+from biceps.tui.widgets.torque_plot import TorquePlot
+
+from test_app_nodes import _text
+
+
+@pytest.fixture
+def elbow(tmp_path):
+    path = tmp_path / "elbow.toml"
+    shutil.copy(FOLDER / "elbow.toml", path)
+    return load_config(path)
+
+
+async def settled(session):
+    """Wait for the muscles' effort to be worked out and shown."""
+    app = session.app
+    workers = [worker for worker in app.workers if worker.group == "effort"]
+    if workers:
+        await app.workers.wait_for_complete(workers)
+    await session.settle()
+
+
+async def test_activation_keys_ask_every_muscle_and_the_panel_shows_what_they_do(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        panel = app.screen.query_one(Forces)
+        assert not panel.has_class("-shown") and app.scene.activations == ()
+        await pilot.press(*">" * 5)
+        await settled(session)
+        assert app.scene.activation == 0.5
+        assert app.scene.activations == (0.5,) * 6
+        assert panel.has_class("-shown") and panel.border_title == "all at activation 0.50"
+        text = _text(panel.content)
+        for muscle in app.effort.muscles:
+            assert muscle.name in text and f"{muscle.torque:+.2f}" in text
+        assert f"net {app.effort.torque:+.2f}" in " ".join(text.split())
+        await pilot.press(*"<" * 5)
+        await settled(session)
+        assert app.scene.activation == 0.0 and app.scene.activations == ()
+        assert app.effort is None and not panel.has_class("-shown")
+        assert not app.unsaved  # asking the muscles to work is no edit
+        assert session.warnings == []
+
+
+async def test_a_weight_in_the_hand_is_held_with_the_least_effort(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        await pilot.press(*"}" * 5)
+        await settled(session)
+        assert app.scene.mass == 5.0
+        arm = app.scene.arm
+        expected = hold_arm(arm, app.config.force_parameters(), arm.flexion, 5.0)
+        assert app.scene.activations == pytest.approx(
+            [muscle.activation for muscle in expected.muscles], abs=1e-12)
+        assert app.effort.torque == pytest.approx(app.effort.load.torque, abs=1e-8)
+        panel = app.screen.query_one(Forces)
+        assert panel.border_title == "holding 5 kg"
+        assert f"load {app.effort.load.torque:.2f} N m" in _text(panel.content)
+        # The weight is held again at every pose the elbow is moved to.
+        await pilot.press("C", "C")
+        await settled(session)
+        assert app.effort.load.flexion == pytest.approx(app.scene.arm.flexion)
+        assert app.effort.torque == pytest.approx(app.effort.load.torque, abs=1e-8)
+        await pilot.press(*"{" * 5)
+        await settled(session)
+        assert app.scene.mass == 0.0 and app.effort is None
+
+
+async def test_a_weight_too_heavy_is_refused_with_the_strongest_torque(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        await pilot.press(*"}" * 40)
+        await settled(session)
+        assert any("the strongest the muscles can hold there is" in warning
+                   for warning in session.warnings)
+        assert "too heavy here: at most" in _text(app.screen.query_one(Forces).content)
+        flexors = [muscle.activation for muscle in app.effort.muscles if muscle.moment_arm > 0]
+        assert flexors == [1.0, 1.0, 1.0]  # at their strongest, shown so
+
+
+async def test_the_keys_stop_at_their_bounds_and_say_so(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        await session.pilot.press("<", "{")
+        assert session.app.scene.activation == 0.0 and session.app.scene.mass == 0.0
+        assert "Every muscle is at rest already: activation 0" in session.warnings
+        assert "The hand holds nothing already" in session.warnings
+        await session.pilot.press(*">" * 11)
+        assert session.app.scene.activation == 1.0
+        assert "Every muscle is fully active already: activation 1" in session.warnings
+
+
+async def test_a_muscle_without_parameters_says_what_to_give(biceps, tmp_path):
+    path = tmp_path / "mine.toml"
+    path.write_text((FOLDER / "biceps.toml").read_text().replace(
+        "[muscle]\n", '[muscle]\nname = "mine"\n', 1))
+    async with biceps(on=load_config(path)) as session:
+        await session.pilot.press(">")
+        assert session.app.scene.activation == 0.0
+        assert any("give them in a [forces.mine] table" in warning
+                   for warning in session.warnings)
+
+
+async def test_b_colours_by_activation_and_the_active_bellies_are_tensed(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        await pilot.press("b", "b")
+        assert app.scene.render.colour_by == "activation"
+        await pilot.press(*">" * 10)
+        await settled(session)
+        assert app.scene.activations == (1.0,) * 6
+        from biceps.engine.scene import SceneRenderer
+
+        picture = SceneRenderer().render(app.scene, 160, 90).astype(int)
+        red = (picture[..., 0] > 150) & (picture[..., 1] < 60) & (picture[..., 2] < 60)
+        assert red.sum() > 100  # fully active bellies, red
+        await pilot.press("b")
+        assert app.scene.render.colour_by == "muscle"
+        assert session.warnings == []
+
+
+async def test_the_torque_plot_shows_once_the_muscles_work(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        await pilot.press("p")
+        plot = app.screen.query_one(TorquePlot)
+        assert not plot.has_class("-shown")
+        await pilot.press(*"}" * 3)
+        await settled(session)
+        assert plot.has_class("-shown") and plot.display
+        strongest = plot._strongest
+        assert len(strongest.flexions) == 66 and max(strongest.torques) > 30.0
+        await pilot.press("c")
+        await settled(session)
+        assert plot._strongest is strongest  # a contraction only moves the mark
+        assert session.warnings == []
+
+
+async def test_the_palette_offers_the_forces_keys(biceps, elbow):
+    async with biceps(size=(120, 40), on=elbow) as session:
+        offered = {hit.text async for hit in KeyCommands(session.app.screen).discover()}
+        assert {"Activate", "Relax", "Weight", "Lighter weight"} <= offered
+        await session.run_command("weight")
+        await settled(session)
+        assert session.app.scene.mass == 1.0
+        assert np.all(np.array(session.app.scene.activations) >= 0.01)
+
+
+def test_effort_changes_stop_at_their_bounds_in_round_steps():
+    from biceps.engine.errors import RefusedChange
+    from biceps.engine.scene import Scene
+    from biceps.tui.changes import effort_changed
+
+    scene = Scene.of(load_config(FOLDER / "elbow.toml"))
+    for _ in range(3):
+        scene = effort_changed(scene, activation=0.1)
+    assert scene.activation == 0.3  # not 0.30000000000000004
+    scene = effort_changed(scene, activation=5.0)
+    assert scene.activation == 1.0
+    with pytest.raises(RefusedChange, match="fully active already"):
+        effort_changed(scene, activation=0.1)
+    scene = effort_changed(scene, mass=2.0)
+    assert (scene.activation, scene.mass) == (1.0, 2.0)
+    with pytest.raises(RefusedChange, match="holds nothing already"):
+        effort_changed(effort_changed(scene, mass=-5.0), mass=-1.0)
