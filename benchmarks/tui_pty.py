@@ -303,9 +303,10 @@ def over_link(terminal: Terminal, megabits: float, seconds: float) -> LinkResult
     return LinkResult(megabits, lag, phase.latencies)
 
 
-def started(argv: list[str], columns: int, rows: int, start=Terminal.start) -> Terminal:
-    """The app in a terminal (made by ``start``), its first picture drawn and a moment to
-    settle."""
+def started(argv: list[str], columns: int, rows: int, start=Terminal.start,
+            first: bytes = b"") -> Terminal:
+    """The app in a terminal (made by ``start``), its first picture drawn, the keys
+    ``first`` typed, and a moment to settle."""
     terminal = start(argv, columns, rows)
     deadline = time.monotonic() + STARTUP_TIMEOUT
     while not any(frame.yaw is not None for frame in terminal.frames):
@@ -313,6 +314,9 @@ def started(argv: list[str], columns: int, rows: int, start=Terminal.start) -> T
             terminal.close()
             raise RuntimeError(f"{argv} drew no picture at {columns}x{rows}")
         terminal.pump(time.monotonic() + 0.1)
+    for key in first:  # not as presses: no picture is awaited for them
+        os.write(terminal.master, bytes([key]))
+        terminal.pump(time.monotonic() + 0.2)
     terminal.pump(time.monotonic() + 1.0)
     return terminal
 
@@ -380,10 +384,11 @@ def run_rich_pixels_app(config: Path) -> None:
 
 
 def measure_app(name: str, argv: list[str], size: tuple[int, int], seconds: float,
-                half_blocks_kb: float | None = None) -> tuple[str, float]:
+                half_blocks_kb: float | None = None, first: bytes = b"") -> tuple[str, float]:
     """The app's line of the table, and its KB a frame in the flood; ``half_blocks_kb``:
-    the half-blocks' at this size in this run, for the ratio."""
-    terminal = started(argv, *size)
+    the half-blocks' at this size in this run, for the ratio; ``first``: keys typed once it
+    is up."""
+    terminal = started(argv, *size, first=first)
     try:
         typematic = hold(terminal, TYPEMATIC, seconds)
         flood = hold(terminal, FLOOD, seconds, wait=False)
@@ -428,6 +433,9 @@ def main() -> None:
     parser.add_argument("--graphics", default="halfblocks",
                         help="biceps's text encoders to measure, comma-separated: halfblocks, "
                         "sextants, quadrants")
+    parser.add_argument("--first", default="",
+                        help="keys biceps is typed once it is up, before the phases: '}}}}}' "
+                        "puts 5 kg in the hand, so that the forces are shown")
     parser.add_argument("--rich-pixels-app", action="store_true", help=argparse.SUPPRESS)
     arguments = parser.parse_args()
     if arguments.rich_pixels_app:
@@ -452,7 +460,8 @@ def main() -> None:
     for size in sizes:
         half_blocks_kb = None
         for name, argv in apps:
-            line, kb = measure_app(name, argv, size, arguments.seconds, half_blocks_kb)
+            first = arguments.first.encode() if name != "rich-pixels" else b""
+            line, kb = measure_app(name, argv, size, arguments.seconds, half_blocks_kb, first)
             if name == "biceps":
                 half_blocks_kb = kb
             print(line, flush=True)

@@ -84,8 +84,8 @@ def muscle_forces(names: Sequence[str], parameters: Sequence[HillParameters],
                   lengths: np.ndarray, moment_arms: np.ndarray,
                   activations) -> list[list[MuscleForce]]:
     """Every muscle at every pose: ``lengths`` and ``moment_arms`` (k, n) cm for k poses of
-    n muscles (``names``, ``parameters``), ``activations`` one for all or (n,); a list of k
-    poses, each a list of n muscles."""
+    n muscles (``names``, ``parameters``), ``activations`` one for all, (n,) or (k, n); a
+    list of k poses, each a list of n muscles."""
     state = equilibrate(stacked(parameters), lengths, activations)
     torques = torque(state.tendon_force, moment_arms)
     pennation = np.degrees(state.pennation)
