@@ -69,6 +69,7 @@ MARKER_TAIL = max(len(SYNC_START), len(SYNC_QUERY), len(CURSOR_QUERY)) - 1
 CAPTION = re.compile(rb"yaw (-?\d+(?:\.\d+)?)\xc2\xb0")
 STEPS_PER_TURN = round(360 / TURN_STEP)
 
+NOTES_GONE = 7.0  # seconds: Textual's notifications last 5
 TYPEMATIC = 30.0  # key presses per second
 FLOOD = 120.0
 STARTUP_TIMEOUT = 180.0  # a cold numba cache compiles every kernel first
@@ -317,7 +318,8 @@ def started(argv: list[str], columns: int, rows: int, start=Terminal.start,
     for key in first:  # not as presses: no picture is awaited for them
         os.write(terminal.master, bytes([key]))
         terminal.pump(time.monotonic() + 0.2)
-    terminal.pump(time.monotonic() + 1.0)
+    # Time for what they said to go: a notification over the picture slows every frame.
+    terminal.pump(time.monotonic() + (NOTES_GONE if first else 1.0))
     return terminal
 
 
