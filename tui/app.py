@@ -216,6 +216,7 @@ class BicepsApp(App[None]):
         self._saving = asyncio.Lock()
         self._asking = False  # a dialog is open, or about to open (see _ask)
         self._effort_for: tuple | None = None  # the arm and what was asked of its muscles
+        self._effort_busy = False  # an answer is being worked out
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         # On the 'too small' screen nothing is seen to change, so nothing changes: only
@@ -354,12 +355,15 @@ class BicepsApp(App[None]):
 
     def _follow_effort(self, scene: Scene) -> None:
         """Work out, in a thread, what the muscles do in ``scene``'s pose when asked to work;
-        forget it when they are not."""
+        forget it when they are not. One at a time: what is asked meanwhile (a held key's
+        poses) is asked again, for the newest pose, when the answer comes."""
         asked = (scene.activation, scene.mass)
         if self._effort_for is not None and scene.arm is self._effort_for[0] \
                 and asked == self._effort_for[1]:
             return
         self._effort_for = (scene.arm, asked)
+        if self._effort_busy:
+            return
         parameters = None
         if asked != (0.0, 0.0):
             try:
@@ -371,18 +375,22 @@ class BicepsApp(App[None]):
             if scene.activations:
                 self.scene = scene.with_activations(())
             return
+        self._effort_busy = True
         self._find_effort(scene, parameters)
 
-    @work(thread=True, exclusive=True, group="effort")
+    @work(thread=True, group="effort")
     def _find_effort(self, scene: Scene, parameters: tuple) -> None:
         found = effort(scene.arm, parameters, scene.activation, scene.mass)
         self.call_from_thread(self._found_effort, scene, found)
 
     def _found_effort(self, scene: Scene, found: Effort) -> None:
+        self._effort_busy = False
         now = self.scene
         if now.arm is not scene.arm or (now.activation, now.mass) != (scene.activation,
                                                                       scene.mass):
-            return  # asked again since: that answer is on its way
+            self._effort_for = None  # asked again since: for the newest pose
+            self._follow_effort(now)
+            return
         self.effort = found
         self.scene = now.with_activations(found.activations)
         if found.refusal is not None:
