@@ -43,7 +43,8 @@ def tensed(muscle: Muscle, activation: float) -> Muscle:
     share = growth / growth.max()
     alpha = TENSION * min(activation, 1.0) * muscle.max_radius / growth.max()
     bulged = muscle.radii + alpha * growth * share
-    beta = volume_step(bulged, growth, muscle.length, muscle.volume, muscle.volume_mode)
+    beta = volume_step(bulged, growth, muscle.length, muscle.reference_volume,
+                       muscle.volume_mode)
     if beta is None:  # the ends cannot give enough: no tension shown
         return muscle
     radii = bulged + beta * growth
