@@ -144,10 +144,11 @@ def tendon_force_strain(strain: np.ndarray, p: HillParameters) -> tuple[np.ndarr
     return fse, slope
 
 
-def equilibrate(p: HillParameters, length, activation) -> Equilibrium:
+def equilibrate(p: HillParameters, length, activation, near=None) -> Equilibrium:
     """The muscle at rest at musculotendon ``length`` (cm) and ``activation`` (0 to 1),
     either of them an array: the fibre length that balances fibre and tendon, and the
-    forces it gives."""
+    forces it gives. ``near``: an equilibrium close by (at a nearby activation, say) to
+    start from, rather than OpenSim's starting point; the answer is the same."""
     length, activation, low = np.broadcast_arrays(
         np.asarray(length, dtype=float), np.asarray(activation, dtype=float),
         p.height / math.tan(MAXIMUM_PENNATION))  # low: the shortest fibre, along the tendon
@@ -156,7 +157,9 @@ def equilibrate(p: HillParameters, length, activation) -> Equilibrium:
     clamped = (high <= low) | (_Balance(p, length, acting, low).error >= 0.0)
     high = np.where(clamped, low, high)
     # OpenSim's starting point: the tendon 1 % past slack.
-    along = np.clip(length - 1.01 * p.tendon_slack_length, low, high)
+    start = (length - 1.01 * p.tendon_slack_length if near is None
+             else near.fibre_length * np.cos(near.pennation))
+    along = np.clip(start, low, high)
     tolerance = FORCE_TOLERANCE * p.max_isometric_force
     for _ in range(MOST_STEPS):
         balance = _Balance(p, length, acting, along)

@@ -34,7 +34,7 @@ import numpy as np
 from biceps.engine.actuation import MuscleForce, muscle_forces, musculotendon, torque
 from biceps.engine.arm26_forces import FOREARM_CENTRE, FOREARM_MASS, GRAVITY
 from biceps.engine.errors import RefusedChange
-from biceps.engine.hill import HillParameters, equilibrate, stacked
+from biceps.engine.hill import Equilibrium, HillParameters, equilibrate, stacked
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
@@ -97,9 +97,9 @@ def hold(names: Sequence[str], parameters: Sequence[HillParameters], lengths: np
     high = np.ones(len(parameters))
     together = stacked(parameters)
     _check_reach(together, lengths, moment_arms, load, low, high)
-    activations = low.copy()
+    activations, state = low.copy(), None
     for _ in range(MOST_STEPS):
-        torques, slopes = _torques(together, lengths, moment_arms, activations)
+        torques, slopes, state = _torques(together, lengths, moment_arms, activations, state)
         target = load.torque - torques.sum() + slopes @ activations
         multiplier = _multiplier(slopes, low, high, target)
         following = np.clip(multiplier * slopes / 2.0, low, high)
@@ -107,7 +107,7 @@ def hold(names: Sequence[str], parameters: Sequence[HillParameters], lengths: np
         activations = following
         if moved <= 1e-12 and abs(torques.sum() - load.torque) <= TORQUE_TOLERANCE:
             break
-    torques, _ = _torques(together, lengths, moment_arms, activations)
+    torques, _, _ = _torques(together, lengths, moment_arms, activations, state)
     if abs(torques.sum() - load.torque) > TORQUE_TOLERANCE:  # never seen: said if it happens
         raise RefusedChange(f"the activations that hold {load.mass:g} kg at {load.flexion:g} "
                             "degrees could not be found (the solver did not converge)")
@@ -125,12 +125,14 @@ def hold_arm(arm: Arm, parameters: Sequence[HillParameters], flexion: float,
                 load_at(arm.skeleton.forearm, flexion, mass))
 
 
-def _torques(parameters: HillParameters, lengths, moment_arms,
-             activations) -> tuple[np.ndarray, np.ndarray]:
-    """Each muscle's torque (N m) at ``activations`` and its slope per unit activation
-    (``parameters`` :func:`stacked`)."""
-    state = equilibrate(parameters, lengths, activations)
-    return torque(state.tendon_force, moment_arms), torque(state.force_per_activation, moment_arms)
+def _torques(parameters: HillParameters, lengths, moment_arms, activations,
+             near: Equilibrium | None = None) -> tuple[np.ndarray, np.ndarray, Equilibrium]:
+    """Each muscle's torque (N m) at ``activations``, its slope per unit activation, and the
+    equilibrium they come from (``parameters`` :func:`stacked`; ``near``, the last step's,
+    to start from)."""
+    state = equilibrate(parameters, lengths, activations, near)
+    return (torque(state.tendon_force, moment_arms),
+            torque(state.force_per_activation, moment_arms), state)
 
 
 def _multiplier(slopes: np.ndarray, low: np.ndarray, high: np.ndarray, target: float) -> float:
@@ -158,8 +160,8 @@ def _check_reach(parameters, lengths, moment_arms, load: Load, low, high) -> Non
     every flexor (positive moment arm) at full activation and every extensor at its least,
     or the other way round."""
     flexing = np.asarray(moment_arms) > 0.0
-    strongest, _ = _torques(parameters, lengths, moment_arms, np.where(flexing, high, low))
-    weakest, _ = _torques(parameters, lengths, moment_arms, np.where(flexing, low, high))
+    strongest, _, _ = _torques(parameters, lengths, moment_arms, np.where(flexing, high, low))
+    weakest, _, _ = _torques(parameters, lengths, moment_arms, np.where(flexing, low, high))
     most, least = strongest.sum(), weakest.sum()
     needed = load.torque
     if least <= needed <= most:

@@ -139,3 +139,14 @@ def test_any_length_and_activation_balance_or_clamp(muscle, stretch, activation)
     clamped = float(state.force_per_activation) == 0.0 and (
         float(state.tendon_force) == 0.0 or float(state.error) > 0.0)
     assert balanced or clamped
+
+
+@pytest.mark.parametrize("p", [BIC, TRI], ids=["parallel", "pennate"])
+def test_starting_near_another_equilibrium_finds_the_same_one(p):
+    lengths = p.tendon_slack_length + p.optimal_fibre_length * np.linspace(0.7, 1.4, 8)
+    near = equilibrate(p, lengths, 0.3)
+    for activation in (0.01, 0.35, 1.0):
+        alone, started = equilibrate(p, lengths, activation), equilibrate(p, lengths, activation,
+                                                                           near)
+        assert started.tendon_force == pytest.approx(alone.tendon_force, rel=1e-9, abs=1e-9)
+        assert started.fibre_length == pytest.approx(alone.fibre_length, rel=1e-9)
