@@ -110,6 +110,15 @@ COLOURINGS = get_args(ColourBy)
 """What ``b`` cycles the muscles' colours through."""
 
 
+class EffortFound(Message):
+    """What the muscles do in ``scene``, worked out in a thread."""
+
+    def __init__(self, scene: Scene, effort: Effort) -> None:
+        super().__init__()
+        self.scene = scene
+        self.effort = effort
+
+
 class QuitAsked(Message):
     """The person asked to quit; delivered behind every key they typed before (see
     :meth:`BicepsApp.action_quit_in_turn`)."""
@@ -380,10 +389,12 @@ class BicepsApp(App[None]):
 
     @work(thread=True, group="effort")
     def _find_effort(self, scene: Scene, parameters: tuple) -> None:
-        found = effort(scene.arm, parameters, scene.activation, scene.mass)
-        self.call_from_thread(self._found_effort, scene, found)
+        self.post_message(EffortFound(scene, effort(scene.arm, parameters, scene.activation,
+                                                    scene.mass)))
 
-    def _found_effort(self, scene: Scene, found: Effort) -> None:
+    @on(EffortFound)
+    def _found_effort(self, message: EffortFound) -> None:
+        scene, found = message.scene, message.effort
         self._effort_busy = False
         now = self.scene
         if now.arm is not scene.arm or (now.activation, now.mass) != (scene.activation,

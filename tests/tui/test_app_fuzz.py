@@ -48,6 +48,7 @@ KEYS = [
     ESC + b"[Z", b"\r", b"\r", ESC, ESC, b"\x7f", ESC + b"[3~", ESC + b"[2~", b"n", b"/",
     ESC + b"[5~", ESC + b"[6~", ESC + b"[H", ESC + b"[F", b"y", b"0", b"1", b"5", b".",
     b"e", b"-", b"\x03", b" ", b"\x1a", ESC + b"[I", ESC + b"[O",
+    b">", b"<", b"}", b"{", b"b",  # the muscles asked to work, a weight, their colours
 ]
 NOT_UTF8 = [b"\xff", b"\xc3a", b"\xe2\x82", b"\x80", b"\xf0\x9f\x92", b"\xed\xa0\x80"]
 
