@@ -72,8 +72,8 @@ exponential's shape (Thelen 2003, as OpenSim)."""
 
 @dataclass(frozen=True)
 class HillParameters:
-    """One muscle's Hill-type parameters (``engine/arm26_forces.py`` has arm26's six); or several
-    muscles', each field an array (:func:`stacked`)."""
+    """One muscle's Hill-type parameters (``engine/arm26_forces.py`` has arm26's six); or
+    several muscles', each field an array (:func:`stacked`)."""
 
     max_isometric_force: float  # N
     optimal_fibre_length: float  # cm
