@@ -149,13 +149,40 @@ def compare(reference: dict) -> None:
         print(f"{name:>9}{worst_force:>14.2e} N{worst_share:>21.1e}{100 * worst_fibre:>13.1e} %")
 
     arm = load_config(FOLDER / "elbow.toml").arm
+    geometry = {flexion: musculotendon(arm, flexion) for flexion in FLEXIONS}
+    print("\nEnd to end, at configs/elbow.toml's own lengths and moment arms: the largest "
+          "difference from OpenSim over 0 to 130 degrees and activations 0, 0.5, 1, and the "
+          "rows within the issue's 3 % or 5 N")
+    print(f"{'muscle':>9}{'length':>10}{'moment arm':>12}{'tendon force':>14}{'within':>9}"
+          f"{'fibre length':>14}{'torque':>10}")
+    for index, name in enumerate(arm.names):
+        mine = [row for row in rows if row["muscle"] == name]
+        worst = dict(length=0.0, moment_arm=0.0, force=0.0, fibre=0.0, torque=0.0)
+        within = 0
+        for row in mine:
+            length, moment_arm = (float(each[index]) for each in geometry[row["flexion_deg"]])
+            state = equilibrate(PARAMETERS[name], length, row["activation"])
+            force = float(state.tendon_force)
+            differences = dict(
+                length=10.0 * length - row["length_mm"],
+                moment_arm=10.0 * moment_arm - row["moment_arm_mm"],
+                force=force - row["tendon_force_n"],
+                fibre=100.0 * (10.0 * float(state.fibre_length) / row["fibre_length_mm"] - 1),
+                torque=(force * moment_arm / 100.0
+                        - row["tendon_force_n"] * row["moment_arm_mm"] / 1000.0))
+            for key, value in differences.items():
+                worst[key] = max(worst[key], value, key=abs)
+            within += abs(differences["force"]) <= max(0.03 * row["tendon_force_n"], 5.0)
+        print(f"{name:>9}{worst['length']:>7.1f} mm{worst['moment_arm']:>9.1f} mm"
+              f"{worst['force']:>12.0f} N{within:>5}/{len(mine)}"
+              f"{worst['fibre']:>12.1f} %{worst['torque']:>6.1f} N m")
+
     print("\nEnd to end: configs/elbow.toml's own musculotendon lengths and moment arms against "
           "OpenSim's, and the tendon force and torque at activation 1 that follow")
     print(f"{'muscle':>9}{'flexion':>8}{'length mm':>22}{'moment arm mm':>22}"
           f"{'tendon force N':>22}{'torque N m':>20}")
     print(f"{'':>17}{'arm26':>8}{'model':>8}{'diff':>6}{'arm26':>8}{'model':>8}{'diff':>6}"
           f"{'arm26':>8}{'model':>8}{'diff':>6}{'arm26':>7}{'model':>7}{'diff':>6}")
-    geometry = {flexion: musculotendon(arm, flexion) for flexion in FLEXIONS}
     for index, name in enumerate(arm.names):
         for flexion in FLEXIONS[::3]:
             theirs = next(row for row in rows if row["muscle"] == name
