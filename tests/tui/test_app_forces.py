@@ -83,6 +83,18 @@ async def test_a_weight_in_the_hand_is_held_with_the_least_effort(biceps, elbow)
         assert app.scene.mass == 0.0 and app.effort is None
 
 
+async def test_at_80_by_24_the_forces_are_shown_whole_above_the_numbers(biceps, elbow):
+    async with biceps(size=(80, 24), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        await pilot.press("h", *"}" * 5)  # the side panel is folded away at 80 columns
+        await settled(session)
+        side = app.screen.query_one("#side").region
+        panel = app.screen.query_one(Forces)
+        assert panel.has_class("-shown")
+        # its border, a heading, six muscles, the net torque and the load's
+        assert panel.region.height == 11 and side.contains_region(panel.region)
+
+
 async def test_a_weight_too_heavy_is_refused_with_the_strongest_torque(biceps, elbow):
     async with biceps(size=(120, 40), on=elbow) as session:
         app, pilot = session.app, session.pilot

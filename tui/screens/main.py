@@ -67,8 +67,10 @@ class MainScreen(LatestSize[None]):
         with Horizontal(id="workspace"):
             yield Viewport(self._pacer, id="viewport", encoder=self._encoder)
             with Vertical(id="side"):
-                yield Stats(id="stats")
+                # The forces first: shown only once asked for, and at 24 rows the stats
+                # would leave them three.
                 yield Forces(id="forces")
+                yield Stats(id="stats")
                 yield NodeTable(id="nodes")
         yield Plots(id="plots")
         yield Recorder(id="recorder")
