@@ -578,7 +578,7 @@ def _forces(path: Path, source: str, table: ConfigFile, arm: Arm) -> dict[str, H
         if default is None:
             missing = [key for key in REQUIRED_FORCES if key not in given]
             if missing:
-                keys = ", ".join(missing[:-1]) + (" and " if len(missing) > 1 else "") + missing[-1]
+                keys = " and ".join(filter(None, (", ".join(missing[:-1]), missing[-1])))
                 raise ConfigError(_located(path, source, ("forces", name), (
                     f"{keys} {'are' if len(missing) > 1 else 'is'} required: arm26 has no "
                     f"muscle named {name!r} to take {'them' if len(missing) > 1 else 'it'} "

@@ -119,7 +119,8 @@ def test_a_path_shorter_than_the_slack_tendon_pulls_nothing_with_the_fibre_at_it
 
 def test_several_muscles_solve_together_as_each_alone():
     names = list(PARAMETERS)
-    lengths = np.array([[42.0, 34.0, 14.0, 28.0, 17.0, 16.0], [35.0, 27.0, 11.0, 32.0, 21.0, 20.0]])
+    lengths = np.array([[42.0, 34.0, 14.0, 28.0, 17.0, 16.0],
+                        [35.0, 27.0, 11.0, 32.0, 21.0, 20.0]])
     together = equilibrate(stacked(PARAMETERS.values()), lengths, 0.7)
     for i, name in enumerate(names):
         alone = equilibrate(PARAMETERS[name], lengths[:, i], 0.7)
