@@ -64,7 +64,7 @@ def test_colour_by_activation_runs_from_neutral_to_red_through_amber():
     assert np.ptp(rest) < 0.1  # a pale neutral
     scene = Scene.of(ELBOW).with_render(colour_by="activation").with_activations(
         (1.0, 0.0, 0.0, 0.0, 0.0, 0.0))
-    mesh, albedo = scene_mesh(scene.arm, scene.render, activations=scene.activations)
+    mesh, albedo, _ = scene_mesh(scene.arm, scene.render, activations=scene.activations)
     parts = arm_parts(tensed_arm(scene.arm, scene.activations), scene.render.segments,
                       companion_segments=companion_segments(scene.render.segments))
     driver = len(parts["BIClong"].vertices)  # the first part
