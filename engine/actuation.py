@@ -42,6 +42,15 @@ def musculotendon(arm: Arm, flexion: float) -> tuple[np.ndarray, np.ndarray]:
     return np.array(lengths), np.array(moment_arms)
 
 
+def musculotendon_across(arm: Arm, flexions: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`musculotendon` at each of ``flexions`` (k,) degrees: lengths and moment arms,
+    both (k, n) cm."""
+    geometry = [musculotendon(arm, flexion) for flexion in flexions]
+    count = len(arm.names)
+    return (np.array([length for length, _ in geometry]).reshape(len(flexions), count),
+            np.array([arms for _, arms in geometry]).reshape(len(flexions), count))
+
+
 @dataclass(frozen=True)
 class MuscleForce:
     """One muscle at rest at one pose and activation."""
@@ -99,7 +108,5 @@ def muscle_forces(names: Sequence[str], parameters: Sequence[HillParameters],
 def forces_across(arm: Arm, parameters: Sequence[HillParameters], flexions: Sequence[float],
                   activation: float) -> list[list[MuscleForce]]:
     """Every muscle of ``arm`` at each of ``flexions`` (degrees), all at ``activation``."""
-    geometry = [musculotendon(arm, flexion) for flexion in flexions]
-    lengths = np.array([length for length, _ in geometry]).reshape(len(flexions), -1)
-    moment_arms = np.array([arms for _, arms in geometry]).reshape(len(flexions), -1)
+    lengths, moment_arms = musculotendon_across(arm, flexions)
     return muscle_forces(arm.names, parameters, lengths, moment_arms, activation)

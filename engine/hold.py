@@ -31,7 +31,8 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from biceps.engine.actuation import MuscleForce, muscle_forces, musculotendon, torque
+from biceps.engine.actuation import (MuscleForce, muscle_forces, musculotendon,
+                                     musculotendon_across, torque)
 from biceps.engine.arm26_forces import FOREARM_CENTRE, FOREARM_MASS, GRAVITY
 from biceps.engine.errors import RefusedChange
 from biceps.engine.hill import Equilibrium, HillParameters, equilibrate, stacked
@@ -214,7 +215,26 @@ def effort(arm: Arm, parameters: Sequence[HillParameters], activation: float,
     try:
         held = hold(arm.names, parameters, lengths, moment_arms, load)
     except RefusedChange as refusal:
-        strongest = np.where(moment_arms > 0.0, 1.0, [p.minimum_activation for p in parameters])
         return Effort(muscle_forces(arm.names, parameters, lengths[None, :],
-                                    moment_arms[None, :], strongest)[0], load, str(refusal))
+                                    moment_arms[None, :],
+                                    strongest_activations(parameters, moment_arms))[0],
+                      load, str(refusal))
     return Effort(held.muscles, load)
+
+
+def strongest_activations(parameters: Sequence[HillParameters],
+                          moment_arms: np.ndarray) -> np.ndarray:
+    """The activations (same shape as ``moment_arms``, (n,) or (k, n) cm) that flex the
+    elbow hardest: every flexor (a positive moment arm) fully active, every extensor at its
+    least."""
+    return np.where(moment_arms > 0.0, 1.0, [p.minimum_activation for p in parameters])
+
+
+def strongest_torques(arm: Arm, parameters: Sequence[HillParameters],
+                      flexions: Sequence[float]) -> np.ndarray:
+    """The strongest torque (N m) the muscles of ``arm`` can flex the elbow with at each of
+    ``flexions`` (k,) degrees: (k,)."""
+    lengths, moment_arms = musculotendon_across(arm, flexions)
+    state = equilibrate(stacked(parameters), lengths,
+                        strongest_activations(parameters, moment_arms))
+    return torque(state.tendon_force, moment_arms).sum(axis=1)

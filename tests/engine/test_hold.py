@@ -15,7 +15,7 @@ from biceps.engine.arm26_forces import PARAMETERS
 from biceps.engine.config import load_config
 from biceps.engine.errors import RefusedChange
 from biceps.engine.hill import equilibrate
-from biceps.engine.hold import hold, hold_arm, load_at
+from biceps.engine.hold import hold, hold_arm, load_at, strongest_torques
 
 NAMES = list(PARAMETERS)
 REFERENCE = json.loads((Path(__file__).parent / "data" / "arm26_forces.json").read_text())
@@ -161,3 +161,13 @@ def test_the_load_is_the_weight_times_its_horizontal_reach():
     load = load_at(30.0, 30.0, 2.0)
     assert load.hand == pytest.approx(2.0 * 9.8066 * 0.30 * 0.5, rel=1e-15)
     assert load.forearm == pytest.approx(1.534315 * 9.8066 * 0.181479 * 0.5, rel=1e-15)
+
+
+def test_the_strongest_torque_across_the_range_is_the_refusals():
+    parameters = [PARAMETERS[name] for name in ELBOW.names]
+    flexions = [30.0, 90.0, 120.0]
+    strongest = strongest_torques(ELBOW, parameters, flexions)
+    assert strongest.shape == (3,)
+    for flexion, most in zip(flexions, strongest):
+        with pytest.raises(RefusedChange, match=f"can hold there is {most:.2f} N m"):
+            hold_arm(ELBOW, parameters, flexion, 200.0)

@@ -11,7 +11,7 @@ from biceps.engine.config import load_config
 from biceps.engine.hold import hold_arm
 from biceps.tui.commands import KeyCommands
 from biceps.tui.widgets.forces import Forces
-from biceps.tui.widgets.torque_plot import TorquePlot
+from biceps.tui.widgets.plots import CURVE_POINTS, Plots
 
 from test_app_nodes import _text
 
@@ -151,16 +151,20 @@ async def test_the_torque_plot_shows_once_the_muscles_work(biceps, elbow):
     async with biceps(size=(120, 40), on=elbow) as session:
         app, pilot = session.app, session.pilot
         await pilot.press("p")
-        plot = app.screen.query_one(TorquePlot)
-        assert not plot.has_class("-shown")
+        plots = app.screen.query_one(Plots)
+        panel = plots.query_one("#torque")
+        assert not panel.has_class("-shown")
         await pilot.press(*"}" * 3)
         await settled(session)
-        assert plot.has_class("-shown") and plot.display
-        strongest = plot._strongest
-        assert len(strongest.flexions) == 66 and max(strongest.torques) > 30.0
+        assert panel.has_class("-shown") and panel.display
+        strongest = plots._strongest
+        assert strongest.shape == (CURVE_POINTS,) and strongest.max() > 30.0
         await pilot.press("c")
         await settled(session)
-        assert plot._strongest is strongest  # a contraction only moves the mark
+        assert plots._strongest is strongest  # a contraction only moves the mark
+        await pilot.press(*"{" * 3)
+        await settled(session)
+        assert not panel.has_class("-shown") and not panel.display
         assert session.warnings == []
 
 

@@ -28,7 +28,6 @@ from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.recorder import Recorder
 from biceps.tui.widgets.stats import Stats
-from biceps.tui.widgets.torque_plot import TorquePlot
 from biceps.tui.widgets.viewport import Viewport
 
 # Below this the side panel leaves the picture a sliver and the table a few rows.
@@ -161,7 +160,7 @@ class MainScreen(LatestSize[None]):
         scene = self.app.scene
         self.query_one(Forces).show(effort, scene.activation, scene.mass)
         parameters = self.app.config.force_parameters() if effort is not None else ()
-        self.query_one(TorquePlot).show(scene.arm, parameters, effort, scene.mass)
+        self.query_one(Plots).show_effort(scene.arm, parameters, effort, scene.mass)
 
     def _show_file(self) -> None:
         # Content, not a str: a str is read as markup, and a file may be named [b]x.toml,

@@ -3,7 +3,10 @@
 Four panels side by side, each one quantity on its own axis: the radius along the muscle
 now, over its rest shape; and against every flexion the arm allows, with the current pose
 marked, the length change and the moment arm, each beside OpenSim's arm26 biceps
-(engine/reference.py), and the girth. The numbers are engine/sweep.py's, the ones
+(engine/reference.py), and the girth. Once the muscles are asked to work, a fifth: the
+strongest torque they can flex the elbow with, the torque the weight in the hand and the
+forearm need (where it rises above the strongest, the weight cannot be held), and the
+muscles' net torque now (engine/hold.py). The numbers are engine/sweep.py's, the ones
 ``biceps sweep`` prints; plotext draws them (textual-plotext). The axes stay put while the
 muscle changes, so a contraction shows as the profile growing and the mark moving, not as
 the scale jumping. Lines are drawn in braille dots, the finest plotext has (2 x 4 a cell):
@@ -21,11 +24,12 @@ from textual_plotext import PlotextPlot
 
 from biceps.engine.arm import Arm
 from biceps.engine.config import rgb
+from biceps.engine.hill import HillParameters
+from biceps.engine.hold import Effort, load_at, strongest_torques
 from biceps.engine.muscle import Muscle
 from biceps.engine.reference import Curve, arm26_biclong
 from biceps.engine.skeleton import Skeleton
 from biceps.engine.sweep import Row, angles, flexion_range, sweep
-from biceps.tui.widgets.torque_plot import TorquePlot
 
 CURVE_POINTS = 121
 """About one a degree across the joint's range: more than a panel has columns of braille
@@ -41,6 +45,7 @@ NOW, REST = "#e06c5a", "#8c8c8c"
 MODEL, REFERENCE = "#e5c07b", "#56b6c2"
 GIRTH = "#e06c5a"
 MARK = "#5c6370"
+STRONGEST, NEEDED = "#e06c5a", "#e5c07b"
 
 
 @dataclass(frozen=True)
@@ -60,6 +65,17 @@ class _Curves:
         return np.array([getattr(row, name) for row in self.rows])
 
 
+@dataclass(frozen=True)
+class _Effort:
+    """What the muscles of ``arm`` are asked to do and do (``parameters`` in the order of
+    its names): the torque panel's data."""
+
+    arm: Arm
+    parameters: tuple[HillParameters, ...]
+    effort: Effort
+    mass: float  # kg in the hand
+
+
 class Plots(Horizontal):
     """Four plots side by side; :meth:`show` redraws them for an arm."""
 
@@ -68,6 +84,9 @@ class Plots(Horizontal):
         self._curves_key: tuple[object, Skeleton, float | None, float | None] | None = None
         self._curves: _Curves | None = None
         self._arm: Arm | None = None  # the arm to draw, once shown
+        self._effort: _Effort | None = None  # the torque panel's, once the muscles work
+        self._strongest_key: tuple | None = None
+        self._strongest: np.ndarray | None = None  # (k,) N m at the curves' flexions
 
     def compose(self) -> ComposeResult:
         # Short enough for a quarter of 100 columns: arm26's muscle is named in the help.
@@ -77,11 +96,11 @@ class Plots(Horizontal):
             ("length", "length change, cm", legend),
             ("moment-arm", "moment arm, cm", legend),
             ("girth", f"[{GIRTH}]girth[/], cm", "flexion, degrees"),
+            ("torque", "torque, N m", f"[{STRONGEST}]━ most[/] [{NEEDED}]━ load[/]"),
         ):
             plot = PlotextPlot(id=name)
             plot.border_title, plot.border_subtitle = title, subtitle
             yield plot
-        yield TorquePlot(id="torque")  # once the muscles are asked to work
 
     def show(self, arm: Arm) -> None:
         """Draw the plots of ``arm``: now if they are shown, else once they are. (The sweep
@@ -89,6 +108,16 @@ class Plots(Horizontal):
         self._arm = arm
         if self.has_class("-shown"):
             self._draw(arm)
+
+    def show_effort(self, arm: Arm, parameters: tuple[HillParameters, ...],
+                    effort: Effort | None, mass: float) -> None:
+        """Draw the torque panel for what the muscles of ``arm`` do, ``effort``, asked to
+        hold ``mass`` kg or not: now if the plots are shown, else once they are; hide the
+        panel for no effort."""
+        self.query_one("#torque").set_class(effort is not None, "-shown")
+        self._effort = None if effort is None else _Effort(arm, parameters, effort, mass)
+        if self._effort is not None and self.has_class("-shown") and self._arm is not None:
+            self._draw_torque(self._effort, self._curves_of(self._arm))
 
     def toggle(self) -> None:
         """Show the plots, or hide them."""
@@ -111,6 +140,22 @@ class Plots(Horizontal):
             np.interp(flexions, reference.flexion, reference.moment_arm), reference)
         self._draw_against_flexion(
             "girth", arm.flexion, flexions, curves.column("girth"), arm.muscle.girth)
+        if self._effort is not None:
+            self._draw_torque(self._effort, curves)
+
+    def _draw_torque(self, asked: _Effort, curves: _Curves) -> None:
+        arm, flexions = asked.arm, curves.column("flexion")
+        # The strongest torque depends on the paths and the parameters, not on the pose: a
+        # contraction only moves the mark. (The curves by identity: made again, they are new.)
+        key = (id(curves), arm.paths, asked.parameters)
+        if key != self._strongest_key:
+            self._strongest = strongest_torques(arm, asked.parameters, flexions)
+            self._strongest_key = key
+        needed = np.array([load_at(arm.skeleton.forearm, flexion, asked.mass).torque
+                           for flexion in flexions])
+        self._draw_lines("torque", arm.flexion, flexions,
+                         [(needed, NEEDED), (self._strongest, STRONGEST)],
+                         asked.effort.torque, NEEDED if asked.mass > 0.0 else STRONGEST)
 
     def _curves_of(self, arm: Arm) -> _Curves:
         # The sweep depends on the rest shape, not on the current length: a contraction only
@@ -142,18 +187,24 @@ class Plots(Horizontal):
                               curve: Curve | None = None) -> None:
         """One quantity's ``values`` (k,) at ``flexions`` (k,), ``now`` at ``flexion``
         marked, and ``reference`` (k,), the same quantity of ``curve``, behind it."""
+        colour = GIRTH if reference is None else MODEL
+        lines = [] if reference is None else [(reference, REFERENCE)]
+        self._draw_lines(name, flexion, flexions, [*lines, (values, colour)], now, colour)
+
+    def _draw_lines(self, name: str, flexion: float, flexions: np.ndarray,
+                    lines: list[tuple[np.ndarray, str]], now: float, colour: str) -> None:
+        """Panel ``name``: each of ``lines``, values (k,) at ``flexions`` (k,) in a colour,
+        the last drawn over the others, and ``now`` at ``flexion`` marked in ``colour``."""
         plot = self.query_one(f"#{name}", PlotextPlot)
         plt = plot.plt
         plt.clear_data()
         plt.vline(flexion, color=rgb(MARK))
-        if reference is not None:
-            plt.plot(flexions.tolist(), reference.tolist(), marker=DOTS, color=rgb(REFERENCE))
-        plt.plot(flexions.tolist(), values.tolist(), marker=DOTS,
-                 color=rgb(GIRTH if reference is None else MODEL))
-        plt.scatter([flexion], [now], marker="●", color=rgb(GIRTH if reference is None else MODEL))
+        for values, line_colour in lines:
+            plt.plot(flexions.tolist(), values.tolist(), marker=DOTS, color=rgb(line_colour))
+        plt.scatter([flexion], [now], marker="●", color=rgb(colour))
         if flexions[-1] > flexions[0]:
             plt.xlim(flexions[0], flexions[-1])
-        shown = values if reference is None else np.concatenate([values, reference])
+        shown = np.concatenate([values for values, _ in lines] + [[now]])
         low, high = shown.min(), shown.max()
         room = MARGIN * (high - low) or MARGIN * max(abs(high), 1.0)  # one point: a span
         plt.ylim(low - room, high + room)
