@@ -11,7 +11,9 @@ from biceps.engine.config import load_config
 from biceps.engine.hold import hold_arm
 from biceps.tui.commands import KeyCommands
 from biceps.tui.widgets.forces import Forces
+from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import CURVE_POINTS, Plots
+from biceps.tui.widgets.stats import Stats
 
 from test_app_nodes import _text
 
@@ -71,7 +73,7 @@ async def test_a_weight_in_the_hand_is_held_with_the_least_effort(biceps, elbow)
         assert app.effort.torque == pytest.approx(app.effort.load.torque, abs=1e-8)
         panel = app.screen.query_one(Forces)
         assert panel.border_title == "holding 5 kg"
-        assert f"load {app.effort.load.torque:.2f} N m" in _text(panel.content)
+        assert panel.border_subtitle == f"load {app.effort.load.torque:.2f} N m"
         # The weight is held again at every pose the elbow is moved to, the last of a run
         # of keys too.
         await pilot.press("C", *"c" * 10)
@@ -83,16 +85,33 @@ async def test_a_weight_in_the_hand_is_held_with_the_least_effort(biceps, elbow)
         assert app.scene.mass == 0.0 and app.effort is None
 
 
-async def test_at_80_by_24_the_forces_are_shown_whole_above_the_numbers(biceps, elbow):
+async def test_at_80_by_24_every_side_panel_keeps_rows_of_its_own(biceps, elbow):
     async with biceps(size=(80, 24), on=elbow) as session:
         app, pilot = session.app, session.pilot
-        await pilot.press("h", *"}" * 5)  # the side panel is folded away at 80 columns
+        await pilot.press("h")  # the side panel is folded away at 80 columns
+        await session.settle()
+        stats, nodes = app.screen.query_one(Stats), app.screen.query_one(NodeTable)
+        full = stats.region.height
+        await pilot.press(*"}" * 5)
         await settled(session)
         side = app.screen.query_one("#side").region
         panel = app.screen.query_one(Forces)
         assert panel.has_class("-shown")
-        # its border, a heading, six muscles, the net torque and the load's
-        assert panel.region.height == 11 and side.contains_region(panel.region)
+        # its border, a heading, six muscles and the net torque; the load in the border
+        assert panel.region.height == 10 and side.contains_region(panel.region)
+        assert "load 13.15 N m" in str(panel.border_subtitle)
+        # the numbers brief (a name, a length, a flexion, a volume), and says so
+        assert stats.region.height == 6 < full and side.contains_region(stats.region)
+        assert "volume" in _text(stats.content) and "more" in str(stats.border_subtitle)
+        # the node table: its border, its heading and four nodes
+        assert nodes.region.height == 7 and side.contains_region(nodes.region)
+        await pilot.resize_terminal(80, 50)
+        await session.settle()
+        assert stats.region.height == full and stats.border_subtitle is None
+        await pilot.resize_terminal(80, 24)
+        await pilot.press(*"{" * 5)  # the forces gone, the numbers whole again
+        await settled(session)
+        assert stats.region.height == full and not panel.display
 
 
 async def test_a_weight_too_heavy_is_refused_with_the_strongest_torque(biceps, elbow):
@@ -102,7 +121,7 @@ async def test_a_weight_too_heavy_is_refused_with_the_strongest_torque(biceps, e
         await settled(session)
         assert any("the strongest the muscles can hold there is" in warning
                    for warning in session.warnings)
-        assert "too heavy here: at most" in _text(app.screen.query_one(Forces).content)
+        assert "too heavy: at most" in str(app.screen.query_one(Forces).border_subtitle)
         flexors = [muscle.activation for muscle in app.effort.muscles if muscle.moment_arm > 0]
         assert flexors == [1.0, 1.0, 1.0]  # at their strongest, shown so
 

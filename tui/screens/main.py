@@ -37,6 +37,11 @@ NARROW = 100
 """Columns below which the side panel is hidden unless asked for: its 32 columns would
 take a third of the picture's width or more."""
 
+SHORT = 40
+"""Rows below which, with the forces shown, the numbers are brief (a muscle's name, length,
+flexion and volume): the forces of six muscles take 10 rows of the side panel and all the
+numbers 20, which at 80x24 left the node table none; brief, it keeps 7."""
+
 
 FOOTER_KEPT_LONGEST = (
     "help", "quit", "edit_node", "insert_node", "delete_node", "subdivide", "turn_in_view",
@@ -61,13 +66,14 @@ class MainScreen(LatestSize[None]):
         self._panel_wanted: bool | None = None  # None: as the width has it
         self._focused_before: Widget | None = None
         self._numbers_due = False  # the numbers of a newer arm are to be shown
+        self._brief = False  # the numbers shown briefly (see SHORT)
 
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
             yield Viewport(self._pacer, id="viewport", encoder=self._encoder)
             with Vertical(id="side"):
-                # The forces first: shown only once asked for, and at 24 rows the stats
-                # would leave them three.
+                # The forces first: shown only once asked for, and then the numbers
+                # brief in a short terminal (SHORT).
                 yield Forces(id="forces")
                 yield Stats(id="stats")
                 yield NodeTable(id="nodes")
@@ -102,6 +108,7 @@ class MainScreen(LatestSize[None]):
             self.call_after_refresh(self._refocus)
         self.set_class(too_small, "-too-small")
         self._place_panel()
+        self._show_numbers(again=True)
 
     @property
     def too_small(self) -> bool:
@@ -147,18 +154,27 @@ class MainScreen(LatestSize[None]):
             self._numbers_due = True
             self.app.call_later(self._show_numbers)
 
-    def _show_numbers(self) -> None:
+    def _show_numbers(self, again: bool = False) -> None:
+        """Show the numbers of the scene's arm if they are not shown yet; ``again``: the
+        numbers' panel again if it is to be brief now and was not, or the other way."""
         self._numbers_due = False
-        arm, selected = self.app.scene.arm, self.app.scene.selected
+        scene = self.app.scene
+        if scene is None:
+            return
+        arm, selected = scene.arm, scene.selected
+        brief = self.app.effort is not None and self.size.height < SHORT
+        if (arm, selected) != self._arm or (again and brief != self._brief):
+            self.query_one(Stats).show(arm, selected, brief)
+            self._brief = brief
         if (arm, selected) != self._arm:
             self._arm = (arm, selected)
-            self.query_one(Stats).show(arm, selected)
             self.query_one(NodeTable).show(arm.muscles[selected])
             self.query_one(Plots).show(arm)
 
     def _show_effort(self, effort: Effort | None) -> None:
         scene = self.app.scene
         self.query_one(Forces).show(effort, scene.activation, scene.mass)
+        self._show_numbers(again=True)
         parameters = self.app.config.force_parameters() if effort is not None else ()
         self.query_one(Plots).show_effort(scene.arm, parameters, effort, scene.mass)
 

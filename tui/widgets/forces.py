@@ -4,9 +4,8 @@ muscles cannot hold it. Shown once the muscles are asked to work (``>`` or ``}``
 
 from __future__ import annotations
 
-from rich.console import Group
 from rich.table import Table
-from rich.text import Text
+from textual.content import Content
 from textual.widgets import Static
 
 from biceps.engine.hold import Effort
@@ -23,6 +22,12 @@ class Forces(Static):
             return
         self.border_title = (f"holding {mass:g} kg" if mass > 0.0
                              else f"all at activation {activation:.2f}")
+        # The load and a refusal in the border, so that the panel is a row for each muscle
+        # and three more (the side panel shares 23 rows at 80x24).
+        self.border_subtitle = (
+            None if effort.load is None else
+            Content.styled("too heavy: " + _heaviest(effort.refusal), "bold $text-error")
+            if effort.refusal is not None else f"load {effort.load.torque:.2f} N m")
         table = Table.grid(padding=(0, 1))
         table.add_column(no_wrap=True, overflow="ellipsis", max_width=8)
         for _ in range(3):
@@ -32,12 +37,7 @@ class Forces(Static):
             table.add_row(muscle.name, f"{muscle.activation:.2f}", f"{muscle.tendon_force:.0f}",
                           f"{muscle.torque:+.2f}")
         table.add_row("net", "", "", f"{effort.torque:+.2f}", style="bold")
-        lines: list = [table]
-        if effort.load is not None:
-            lines.append(Text(f"load {effort.load.torque:.2f} N m", style="dim"))
-        if effort.refusal is not None:
-            lines.append(Text("too heavy here: " + _heaviest(effort.refusal), style="bold red"))
-        self.update(Group(*lines))
+        self.update(table)
 
 
 def _heaviest(refusal: str) -> str:

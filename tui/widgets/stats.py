@@ -13,17 +13,25 @@ from biceps.engine.arm import Arm
 class Stats(Static):
     _rows = 0  # the rows shown last
 
-    def show(self, arm: Arm, selected: int = 0) -> None:
+    def show(self, arm: Arm, selected: int = 0, brief: bool = False) -> None:
         """The numbers of ``arm``'s muscle ``selected`` (0: the driver), and with several
-        muscles a line for each: its length, volume and how closely that is kept."""
+        muscles a line for each: its length, volume and how closely that is kept;
+        ``brief``, only its name, length, flexion and volume (where the rows are few)."""
         muscle = arm.muscles[selected]
-        shortest, longest = arm.length_range()
         table = Table.grid(padding=(0, 1))
         table.add_column(style="dim", no_wrap=True)
         table.add_column(no_wrap=True)
         if len(arm.names) > 1:
             table.add_row("muscle", arm.names[selected])
         table.add_row("length", f"{_number(muscle.length, 2)} cm")
+        self.border_subtitle = "more with more rows" if brief else None
+        if brief:
+            table.add_row("flexion", f"{arm.flexion:.1f}°")
+            table.add_row("volume", f"{_number(muscle.volume, 3)} cm³")
+            self.update(table, layout=table.row_count != self._rows)
+            self._rows = table.row_count
+            return
+        shortest, longest = arm.length_range()
         if selected == 0:
             table.add_row("  range", f"{_number(shortest, 2)} to {_number(longest, 2)}")
         table.add_row("flexion", f"{arm.flexion:.1f}°")
