@@ -52,10 +52,14 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import biceps
 from biceps.tui.changes import TURN_STEP  # degrees per press of the right arrow
 
 ROOT = Path(__file__).resolve().parent.parent
 CONFIG = ROOT / "configs" / "biceps.toml"
+INSTALLED = Path(biceps.__file__).resolve().parent.parent
+"""Where the apps start: the checkout of the biceps this Python imports. From this one's
+root, another installation's Python (``-m biceps.cli``) would run this checkout's code."""
 
 SYNC_START = b"\x1b[?2026h"
 SYNC_END = b"\x1b[?2026l"
@@ -111,7 +115,7 @@ class Terminal:
         }
         environment.update(TERM="xterm-256color", COLORTERM="truecolor")
         process = subprocess.Popen(
-            argv, stdin=slave, stdout=slave, stderr=slave, env=environment, cwd=ROOT,
+            argv, stdin=slave, stdout=slave, stderr=slave, env=environment, cwd=INSTALLED,
             start_new_session=True, close_fds=True,
         )  # fmt: skip
         os.close(slave)
