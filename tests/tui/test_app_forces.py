@@ -214,3 +214,22 @@ def test_effort_changes_stop_at_their_bounds_in_round_steps():
     assert (scene.activation, scene.mass) == (1.0, 2.0)
     with pytest.raises(RefusedChange, match="holds nothing already"):
         effort_changed(effort_changed(scene, mass=-5.0), mass=-1.0)
+
+
+async def test_the_forces_are_worked_out_once_a_pose_not_once_a_frame(biceps, elbow, monkeypatch):
+    import biceps.tui.app as app_module
+
+    asked, original = [], app_module.effort
+    monkeypatch.setattr(app_module, "effort",
+                        lambda arm, *rest: asked.append(arm) or original(arm, *rest))
+    async with biceps(size=(120, 40), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        await pilot.press(*"}" * 2)
+        await settled(session)
+        before = len(asked)
+        await pilot.press(*["right"] * 10, "up")  # turns: the same pose, new frames
+        await settled(session)
+        assert len(asked) == before and app.effort is not None
+        await pilot.press("c")  # a new pose: asked once more
+        await settled(session)
+        assert len(asked) == before + 1 and asked[-1] is app.scene.arm
