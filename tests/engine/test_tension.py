@@ -1,6 +1,8 @@
 """An active muscle's tension shape: the belly thicker, its ends thinner, at the same length
 and exactly the same volume."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
@@ -9,7 +11,8 @@ from biceps.configs import FOLDER
 from biceps.engine.config import load_config
 from biceps.engine.muscle import volume
 from biceps.engine.anatomy import arm_parts
-from biceps.engine.scene import Scene, activation_colour, companion_segments, scene_mesh
+from biceps.engine.scene import (Scene, activation_colour, companion_segments, marked_albedo,
+                                 scene_mesh)
 from biceps.engine.tension import tensed, tensed_arm
 
 ELBOW = load_config(FOLDER / "elbow.toml")
@@ -71,3 +74,17 @@ def test_colour_by_activation_runs_from_neutral_to_red_through_amber():
     reds = (albedo[:, 0] > 0.8) & (albedo[:, 1] < 0.15)
     assert reds[:driver].any() and not reds[driver:].any()
     assert len(mesh.vertices) == sum(len(part.vertices) for part in parts.values())
+
+
+def test_the_pick_is_marked_over_the_colours_of_activation():
+    scene = replace(Scene.of(ELBOW).with_render(colour_by="activation").with_activations(
+        (1.0, 0.4, 0.0, 0.0, 0.0, 0.0)), marked=True, selected=1)
+    mesh, albedo, spans = scene_mesh(scene.arm, scene.render, activations=scene.activations)
+    marked = marked_albedo(scene, mesh, albedo, spans)
+    start, end = spans["BRA"]
+    assert np.all(marked[start:end] >= albedo[start:end])  # BRA's amber lighter
+    assert (marked[start:end] > albedo[start:end] + 0.05).any()
+    outside = np.r_[0:start, end:len(albedo)]
+    assert np.array_equal(marked[outside], albedo[outside])  # BIClong stays red
+    red = (albedo[:, 0] > 0.8) & (albedo[:, 1] < 0.15)
+    assert red[spans["BIClong"][0]:spans["BIClong"][1]].any()
