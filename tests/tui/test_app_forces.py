@@ -114,6 +114,21 @@ async def test_at_80_by_24_every_side_panel_keeps_rows_of_its_own(biceps, elbow)
         assert stats.region.height == full and not panel.display
 
 
+async def test_with_the_plots_the_numbers_shrink_to_leave_the_node_table_rows(biceps, elbow):
+    async with biceps(size=(150, 45), on=elbow) as session:
+        app, pilot = session.app, session.pilot
+        await pilot.press(*"}" * 5)
+        await settled(session)
+        stats, nodes = app.screen.query_one(Stats), app.screen.query_one(NodeTable)
+        assert stats.border_subtitle is None  # 44 rows for the side panel: room for all
+        await pilot.press("p")  # the plots take 40 % of the rows
+        await session.settle()
+        assert stats.border_subtitle is not None and nodes.region.height >= 10
+        await pilot.press("p")
+        await session.settle()
+        assert stats.border_subtitle is None
+
+
 async def test_a_weight_too_heavy_is_refused_with_the_strongest_torque(biceps, elbow):
     async with biceps(size=(120, 40), on=elbow) as session:
         app, pilot = session.app, session.pilot

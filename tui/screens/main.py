@@ -37,10 +37,19 @@ NARROW = 100
 """Columns below which the side panel is hidden unless asked for: its 32 columns would
 take a third of the picture's width or more."""
 
-SHORT = 40
-"""Rows below which, with the forces shown, the numbers are brief (a muscle's name, length,
-flexion and volume): the forces of six muscles take 10 rows of the side panel and all the
-numbers 20, which at 80x24 left the node table none; brief, it keeps 7."""
+SHORT = 38
+"""The side panel's rows below which, with the forces shown, the numbers are brief (a
+muscle's name, length, flexion and volume): the forces of six muscles take 10 rows and all
+the numbers 20, which at 80x24 (23 rows) left the node table none, and at 150x45 with the
+plots (26) too; brief, it keeps 7 and 10."""
+
+
+class SidePanel(Vertical):
+    """The side panel, which tells its screen when its height changes (a resize, the plots
+    shown or hidden), for the numbers to be brief or whole (`SHORT`)."""
+
+    def on_resize(self) -> None:
+        self.screen.show_numbers_again()
 
 
 FOOTER_KEPT_LONGEST = (
@@ -71,9 +80,9 @@ class MainScreen(LatestSize[None]):
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
             yield Viewport(self._pacer, id="viewport", encoder=self._encoder)
-            with Vertical(id="side"):
+            with SidePanel(id="side"):
                 # The forces first: shown only once asked for, and then the numbers
-                # brief in a short terminal (SHORT).
+                # brief in a short panel (SHORT).
                 yield Forces(id="forces")
                 yield Stats(id="stats")
                 yield NodeTable(id="nodes")
@@ -108,7 +117,6 @@ class MainScreen(LatestSize[None]):
             self.call_after_refresh(self._refocus)
         self.set_class(too_small, "-too-small")
         self._place_panel()
-        self._show_numbers(again=True)
 
     @property
     def too_small(self) -> bool:
@@ -154,15 +162,20 @@ class MainScreen(LatestSize[None]):
             self._numbers_due = True
             self.app.call_later(self._show_numbers)
 
+    def show_numbers_again(self) -> None:
+        """The numbers' panel again if it is to be brief now and was not, or the other way."""
+        self._show_numbers(again=True)
+
     def _show_numbers(self, again: bool = False) -> None:
-        """Show the numbers of the scene's arm if they are not shown yet; ``again``: the
-        numbers' panel again if it is to be brief now and was not, or the other way."""
+        """Show the numbers of the scene's arm if they are not shown yet; ``again``: see
+        :meth:`show_numbers_again`."""
         self._numbers_due = False
         scene = self.app.scene
         if scene is None:
             return
         arm, selected = scene.arm, scene.selected
-        brief = self.app.effort is not None and self.size.height < SHORT
+        brief = (self.app.effort is not None
+                 and self.query_one(SidePanel).size.height < SHORT)
         if (arm, selected) != self._arm or (again and brief != self._brief):
             self.query_one(Stats).show(arm, selected, brief)
             self._brief = brief
