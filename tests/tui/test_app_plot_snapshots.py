@@ -4,8 +4,12 @@ Update it with ``pytest tests/tui/test_app_plot_snapshots.py --snapshot-update``
 the result (``tests/tui/__snapshots__``) before accepting it.
 """
 
+import shutil
+
 from textual.pilot import Pilot
 
+from biceps.configs import FOLDER
+from biceps.engine.config import load_config
 from biceps.tui.app import BicepsApp
 from test_app_snapshots import _picture_drawn
 
@@ -16,3 +20,21 @@ def test_the_plot_panel_after_a_contraction(snap_compare, config):
         await _picture_drawn(pilot)
 
     assert snap_compare(BicepsApp(config), terminal_size=(110, 34), run_before=contract_with_plots)
+
+
+def test_the_torque_panel_beside_the_others_holding_5_kg(snap_compare, tmp_path):
+    path = tmp_path / "elbow.toml"
+    shutil.copy(FOLDER / "elbow.toml", path)
+
+    async def hold_with_plots(pilot: Pilot) -> None:
+        await pilot.press("p", *"}" * 5)
+        app = pilot.app
+        for _ in range(1000):
+            if app.effort is not None and not app._effort_busy and app.scene.mass == 5.0:
+                break
+            await pilot.pause(0.01)
+        app.clear_notifications()  # the five 'Holding N kg', each over the picture
+        await _picture_drawn(pilot)
+
+    assert snap_compare(BicepsApp(load_config(path)), terminal_size=(150, 45),
+                        run_before=hold_with_plots)
