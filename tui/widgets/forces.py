@@ -41,7 +41,7 @@ class Forces(Static):
 
 
 def _heaviest(refusal: str) -> str:
-    """The refusal's end, what the muscles can do (``at most 16.81 kg there``), short enough
-    for the panel; the whole sentence is in the notification."""
+    """The refusal's end, what the muscles can do (``at most 16.81 kg``), short enough for
+    the panel's border; the whole sentence is in the notification."""
     *_, last = refusal.rsplit(": ", 1)
-    return last if "kg" in last else "the muscles cannot hold it"
+    return last.removesuffix(" there") if "kg" in last else "the muscles cannot"
