@@ -6,6 +6,7 @@ import shutil
 
 import numpy as np
 import pytest
+from textual.content import Content
 
 from biceps.configs import FOLDER
 from biceps.engine.config import load_config
@@ -137,7 +138,7 @@ async def test_a_weight_too_heavy_is_refused_with_the_strongest_torque(biceps, e
         await settled(session)
         assert any("the strongest the muscles can hold there is" in warning
                    for warning in session.warnings)
-        said = str(app.screen.query_one(Forces).border_subtitle)
+        said = Content.from_markup(app.screen.query_one(Forces).border_subtitle).plain
         assert re.fullmatch(r"too heavy: at most [0-9.]+ kg", said)
         assert len(said) <= 28  # whole in the border of a panel 32 wide
         flexors = [muscle.activation for muscle in app.effort.muscles if muscle.moment_arm > 0]
