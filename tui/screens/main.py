@@ -163,31 +163,29 @@ class MainScreen(LatestSize[None]):
             self.app.call_later(self._show_numbers)
 
     def show_numbers_again(self) -> None:
-        """The numbers' panel again if it is to be brief now and was not, or the other way."""
-        self._show_numbers(again=True)
+        """The numbers' panel again, for the arm it shows, if it is to be brief now and was
+        not, or the other way (`SHORT`)."""
+        if self._arm is not None and self._brief_wanted() != self._brief:
+            self._brief = not self._brief
+            self.query_one(Stats).show(*self._arm, self._brief)
 
-    def _show_numbers(self, again: bool = False) -> None:
-        """Show the numbers of the scene's arm if they are not shown yet; ``again``: see
-        :meth:`show_numbers_again`."""
+    def _brief_wanted(self) -> bool:
+        return self.app.effort is not None and self.query_one(SidePanel).size.height < SHORT
+
+    def _show_numbers(self) -> None:
         self._numbers_due = False
-        scene = self.app.scene
-        if scene is None:
-            return
-        arm, selected = scene.arm, scene.selected
-        brief = (self.app.effort is not None
-                 and self.query_one(SidePanel).size.height < SHORT)
-        if (arm, selected) != self._arm or (again and brief != self._brief):
-            self.query_one(Stats).show(arm, selected, brief)
-            self._brief = brief
+        arm, selected = self.app.scene.arm, self.app.scene.selected
         if (arm, selected) != self._arm:
             self._arm = (arm, selected)
+            self._brief = self._brief_wanted()
+            self.query_one(Stats).show(arm, selected, self._brief)
             self.query_one(NodeTable).show(arm.muscles[selected])
             self.query_one(Plots).show(arm)
 
     def _show_effort(self, effort: Effort | None) -> None:
         scene = self.app.scene
         self.query_one(Forces).show(effort, scene.activation, scene.mass)
-        self._show_numbers(again=True)
+        self.show_numbers_again()
         parameters = self.app.config.force_parameters() if effort is not None else ()
         self.query_one(Plots).show_effort(scene.arm, parameters, effort, scene.mass)
 
