@@ -176,16 +176,18 @@ async def _check_model(app: BicepsApp) -> None:
 def _numbers_of(app: BicepsApp) -> tuple[str, int, tuple[str, str]]:
     """The length, node count and last node's place and radius the model has."""
     muscle = app.scene.arm.muscle
-    return (f"length     {app.scene.arm.length:.2f} cm", muscle.node_count,
+    return (f"length {app.scene.arm.length:.2f} cm", muscle.node_count,
             (f"{app.scene.arm.length:.2f}", f"{muscle.radii[-1]:.3f}"))
 
 
 def _numbers_shown(app: BicepsApp) -> tuple[str, int, tuple[str, str]]:
-    """The same as the side panel and the node table show them."""
+    """The same as the side panel and the node table show them (the length's row with its
+    spaces closed up: with the forces shown at 80x24 the numbers are brief, their first
+    column narrower)."""
     main = app.screen_stack[0]
     shown = Console(width=40, file=io.StringIO(), record=True)
     shown.print(main.query_one(Stats).content)
-    length = next((line.strip() for line in shown.export_text().splitlines()
+    length = next((" ".join(line.split()) for line in shown.export_text().splitlines()
                    if line.strip().startswith("length ")), "")
     table = main.query_one(NodeTable)
     last = table.row(table.row_count - 1)[1:3] if table.row_count else ()
