@@ -154,7 +154,7 @@ def compare(reference: dict) -> None:
           "difference from OpenSim over 0 to 130 degrees and activations 0, 0.5, 1, and the "
           "rows within the issue's 3 % or 5 N")
     print(f"{'muscle':>9}{'length':>10}{'moment arm':>12}{'tendon force':>14}{'within':>9}"
-          f"{'fibre length':>14}{'torque':>10}")
+          f"{'fibre length':>14}{'torque':>11}")
     for index, name in enumerate(arm.names):
         mine = [row for row in rows if row["muscle"] == name]
         worst = dict(length=0.0, moment_arm=0.0, force=0.0, fibre=0.0, torque=0.0)
@@ -173,9 +173,9 @@ def compare(reference: dict) -> None:
             for key, value in differences.items():
                 worst[key] = max(worst[key], value, key=abs)
             within += abs(differences["force"]) <= max(0.03 * row["tendon_force_n"], 5.0)
-        print(f"{name:>9}{worst['length']:>7.1f} mm{worst['moment_arm']:>9.1f} mm"
-              f"{worst['force']:>12.0f} N{within:>5}/{len(mine)}"
-              f"{worst['fibre']:>12.1f} %{worst['torque']:>6.1f} N m")
+        print(f"{name:>9}{worst['length']:>7.3f} mm{worst['moment_arm']:>9.3f} mm"
+              f"{worst['force']:>12.3f} N{within:>5}/{len(mine)}"
+              f"{worst['fibre']:>12.4f} %{worst['torque']:>7.3f} N m")
 
     print("\nEnd to end: configs/elbow.toml's own musculotendon lengths and moment arms against "
           "OpenSim's, and the tendon force and torque at activation 1 that follow")

@@ -2,10 +2,12 @@
 torque about the elbow.
 
 Every musculotendon length and moment arm comes from one call, :func:`musculotendon`: the
-length of each muscle's path at that flexion, as the arm computes it, and the moment arm as
-``-dL/dtheta`` of that path (the tendon-excursion method, which is what OpenSim reports),
-so that a better path changes every number here and nothing else. The forces are the
-Hill-type model's at rest (``engine/hill.py``).
+length of each muscle's path at that flexion and its moment arm, ``-dL/dtheta`` of that path
+(the tendon-excursion method, which is what OpenSim reports), both from the arm's paths
+(``engine/path.py``; arm26's via points and wrapping surfaces on ``configs/elbow.toml``), as
+:attr:`Arm.lengths` and :attr:`Arm.moment_arms` give them at the arm's own pose, so that a
+better path changes every number here and nothing else. The forces are the Hill-type
+model's at rest (``engine/hill.py``).
 
 Units: lengths and moment arms in cm, forces in N, torques in N m, positive where they
 flex the elbow.
@@ -13,7 +15,6 @@ flex the elbow.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Sequence
 
@@ -24,22 +25,13 @@ from biceps.engine.hill import HillParameters, equilibrate, stacked
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
 
-MOMENT_ARM_STEP = 1e-4
-"""Radians either side of the pose at which a path's length is taken for its moment arm
-(a central difference): within 1e-8 cm of the exact moment arm (the straight driver's, from
-the law of cosines, over 0 to 130 degrees: 9.5e-9 cm at most)."""
-
 
 def musculotendon(arm: Arm, flexion: float) -> tuple[np.ndarray, np.ndarray]:
     """Each muscle's musculotendon length and moment arm about the elbow (both (n,) cm, in
     the order of ``arm.names``) with the elbow at ``flexion`` degrees."""
-    step = math.degrees(MOMENT_ARM_STEP)
-    lengths, moment_arms = [], []
-    for path in arm.paths:
-        lengths.append(path.length_at(flexion))
-        lost = path.length_at(flexion - step) - path.length_at(flexion + step)
-        moment_arms.append(lost / (2.0 * MOMENT_ARM_STEP))
-    return np.array(lengths), np.array(moment_arms)
+    paths = arm.paths
+    return (np.array([path.length_at(flexion) for path in paths]),
+            np.array([path.moment_arm_at(flexion) for path in paths]))
 
 
 def musculotendon_across(arm: Arm, flexions: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:

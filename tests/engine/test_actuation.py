@@ -14,14 +14,17 @@ ELBOW = load_config(FOLDER / "elbow.toml").arm
 
 
 @pytest.mark.parametrize("flexion", [0.0, 35.0, 90.0, 130.0])
-def test_the_drivers_length_and_moment_arm_are_the_skeletons(flexion):
-    lengths, moment_arms = musculotendon(ELBOW, flexion)
-    skeleton = ELBOW.skeleton
-    assert lengths[0] == skeleton.length_at(flexion)
-    # The moment arm by central difference against the law of cosines' exact one.
-    assert moment_arms[0] == pytest.approx(skeleton.moment_arm(flexion), abs=1e-8)
-    assert lengths[1:] == pytest.approx(
-        [ELBOW.at_flexion(flexion).companions[i].muscle.length for i in range(5)], rel=1e-12)
+@pytest.mark.parametrize("config", ["elbow.toml", "biceps.toml"])
+def test_the_lengths_and_moment_arms_are_the_arms_own(config, flexion):
+    # One source of geometry: the arm's paths, as the arm at that flexion reports them
+    # (arm26's via points and wraps on elbow.toml, the straight skeleton on biceps.toml).
+    arm = load_config(FOLDER / config).arm
+    lengths, moment_arms = musculotendon(arm, flexion)
+    posed = arm.at_flexion(flexion)
+    assert len(lengths) == len(moment_arms) == len(arm.names)
+    assert lengths == pytest.approx(posed.lengths, rel=1e-12)
+    assert moment_arms == pytest.approx(posed.moment_arms, rel=1e-9, abs=1e-12)
+    assert moment_arms[0] == pytest.approx(posed.moment_arm, rel=1e-9)
 
 
 def test_a_moment_arm_is_the_length_lost_per_radian_of_flexion():

@@ -1,14 +1,19 @@
 """The Hill-type model against OpenSim 4.6's Thelen2003Muscle on arm26, at OpenSim's own
-musculotendon lengths: the stored table of ``benchmarks/arm26_forces.py``."""
+musculotendon lengths and end to end at ``configs/elbow.toml``'s: the stored table of
+``benchmarks/arm26_forces.py``."""
 
 import json
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
+from biceps.configs import FOLDER
+from biceps.engine.actuation import musculotendon
 from biceps.engine.arm26_forces import CURVES, FOREARM_CENTRE, FOREARM_MASS, PARAMETERS
 from biceps.engine.hill import MAXIMUM_PENNATION, equilibrate
+from biceps.engine.config import load_config
 from biceps.engine.hold import load_at
 
 REFERENCE = json.loads((Path(__file__).parent / "data" / "arm26_forces.json").read_text())
@@ -51,6 +56,25 @@ def test_every_tendon_force_is_within_3_percent_or_5_n_and_every_fibre_within_2_
                           (state.passive_force, "passive_force_n")):
             assert abs(ours[k] - row[key]) <= max(0.03 * row[key], 5.0), (key, row)
         assert math.degrees(state.pennation[k]) == pytest.approx(row["pennation_deg"], abs=0.1)
+
+
+@pytest.mark.parametrize("name", list(PARAMETERS))
+def test_end_to_end_at_the_elbows_own_paths_every_row_is_within_3_percent_or_5_n(name):
+    # configs/elbow.toml's lengths and moment arms are its arm26 paths' (engine/path.py):
+    # the tendon force, fibre length and torque at those, not at OpenSim's, against OpenSim.
+    arm = load_config(FOLDER / "elbow.toml").arm
+    index = arm.names.index(name)
+    rows = [row for row in ROWS if row["muscle"] == name]
+    lengths, moment_arms = np.transpose(
+        [[each[index] for each in musculotendon(arm, row["flexion_deg"])] for row in rows])
+    state = equilibrate(PARAMETERS[name], lengths, [row["activation"] for row in rows])
+    for k, row in enumerate(rows):
+        assert abs(state.tendon_force[k] - row["tendon_force_n"]) <= max(
+            0.03 * row["tendon_force_n"], 5.0), row
+        assert 10 * state.fibre_length[k] == pytest.approx(row["fibre_length_mm"], rel=0.02), row
+        theirs = row["tendon_force_n"] * row["moment_arm_mm"] / 1000
+        assert state.tendon_force[k] * moment_arms[k] / 100 == pytest.approx(
+            theirs, rel=0.03, abs=0.05), row
 
 
 def test_the_forearms_own_weight_is_held_by_opensims_torque():
