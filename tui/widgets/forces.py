@@ -41,7 +41,7 @@ class Forces(Static):
 
 
 def _heaviest(refusal: str) -> str:
-    """The refusal's end, what the muscles can do (``at most 16.81 kg``), short enough for
+    """The refusal's end, what the muscles can do (``at most 24.79 kg``), short enough for
     the panel's border; the whole sentence is in the notification."""
     *_, last = refusal.rsplit(": ", 1)
     return last.removesuffix(" there") if "kg" in last else "the muscles cannot"
