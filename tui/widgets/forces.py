@@ -41,7 +41,9 @@ class Forces(Static):
 
 
 def _heaviest(refusal: str) -> str:
-    """The refusal's end, what the muscles can do (``at most 24.79 kg``), short enough for
-    the panel's border; the whole sentence is in the notification."""
+    """The refusal's end, what the muscles can do (``max 24.79 kg``), short enough for the
+    panel's border (26 cells of its 32); the whole sentence is in the notification."""
     *_, last = refusal.rsplit(": ", 1)
-    return last.removesuffix(" there") if "kg" in last else "the muscles cannot"
+    if "kg" not in last:
+        return "the muscles cannot"
+    return last.removesuffix(" there").replace("at most", "max")
