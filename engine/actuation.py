@@ -60,20 +60,18 @@ class MuscleForce:
     torque: float  # N m about the elbow, positive flexing
 
     def record(self) -> dict[str, Any]:
-        """The muscle's numbers as plain data, named with their units."""
-        return {
-            "name": self.name,
-            "activation": self.activation,
-            "musculotendon_length_cm": self.length,
-            "moment_arm_cm": self.moment_arm,
-            "fibre_length_cm": self.fibre_length,
-            "normalised_fibre_length": self.normalised_fibre_length,
-            "pennation_deg": self.pennation,
-            "active_force_n": self.active_force,
-            "passive_force_n": self.passive_force,
-            "tendon_force_n": self.tendon_force,
-            "torque_nm": self.torque,
-        }
+        """The muscle's numbers as plain data, named with their units (:data:`RECORD`)."""
+        return {key: getattr(self, field) for field, key in RECORD}
+
+
+RECORD = (("name", "name"), ("activation", "activation"),
+          ("length", "musculotendon_length_cm"), ("moment_arm", "moment_arm_cm"),
+          ("fibre_length", "fibre_length_cm"),
+          ("normalised_fibre_length", "normalised_fibre_length"), ("pennation", "pennation_deg"),
+          ("active_force", "active_force_n"), ("passive_force", "passive_force_n"),
+          ("tendon_force", "tendon_force_n"), ("torque", "torque_nm"))
+"""Each field of :class:`MuscleForce` and its name in ``sweep`` and ``hold``'s output, in
+their order there."""
 
 
 def torque(tendon_force, moment_arm):

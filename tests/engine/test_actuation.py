@@ -1,11 +1,14 @@
 """The muscles as actuators: their lengths and moment arms from one call, their forces and
 torques at an activation."""
 
+from dataclasses import fields
+
 import numpy as np
 import pytest
 
 from biceps.configs import FOLDER
-from biceps.engine.actuation import forces_across, muscle_forces, musculotendon
+from biceps.engine.actuation import (RECORD, MuscleForce, forces_across, muscle_forces,
+                                     musculotendon)
 from biceps.engine.arm26_forces import PARAMETERS
 from biceps.engine.config import load_config
 from biceps.engine.hill import equilibrate
@@ -68,3 +71,7 @@ def test_one_activation_a_muscle():
     assert record["name"] == "TRIlong" and record["torque_nm"] == pose[1].torque
     assert set(record) >= {"fibre_length_cm", "active_force_n", "passive_force_n",
                            "tendon_force_n", "torque_nm"}
+    # Every field is in the record, each under one name.
+    assert sorted(field for field, _ in RECORD) == sorted(f.name for f in fields(MuscleForce))
+    assert len(record) == len(RECORD) and list(record.values()) == [
+        getattr(pose[1], field) for field, _ in RECORD]
