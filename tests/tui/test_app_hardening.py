@@ -99,14 +99,19 @@ async def test_the_theme_palette_is_guarded_too(biceps):
         assert session.app.failure is None
 
 
+async def _palette(session) -> Palette:
+    """The command palette, opened with ctrl+p and laid out."""
+    await session.pilot.press("ctrl+p")
+    await session.settle()
+    return session.app.screen
+
+
 async def test_a_palette_opened_as_the_last_one_closes_is_a_palette_of_its_own(biceps):
     # A storm's ctrl+p can be handled after a palette has closed and before it is removed:
     # Textual's palette id, the same for both, ended the app (DuplicateIds).
     async with biceps() as session:
         app = session.app
-        await session.pilot.press("ctrl+p")
-        await session.settle()
-        closing = app.screen
+        closing = await _palette(session)
         closing.dismiss()
         app.action_command_palette()
         await session.settle()
@@ -119,9 +124,7 @@ async def test_a_click_on_the_palette_after_the_window_shrank_does_nothing(bicep
     # gets the click: Textual's handler found nothing there (NoWidget) and ended the app.
     async with biceps() as session:
         app = session.app
-        await session.pilot.press("ctrl+p")
-        await session.settle()
-        palette = app.screen
+        palette = await _palette(session)
         await session.pilot.resize_terminal(1, 3)
         palette.post_message(events.Click(palette, 10, 10, 0, 0, 1, False, False, False,
                                           screen_x=10, screen_y=10))
@@ -135,9 +138,7 @@ async def test_the_palette_s_late_timers_as_it_closes_do_not_end_the_app(biceps)
     # show it busy, seen in a storm) looked for them, NoMatches, and ended the app.
     async with biceps() as session:
         app = session.app
-        await session.pilot.press("ctrl+p")
-        await session.settle()
-        palette = app.screen
+        palette = await _palette(session)
         await palette.query_one(CommandList).remove()  # going, as the palette closes
         palette._show_busy = True  # what the search's timer sets (a private reactive)
         await session.pilot.pause()
