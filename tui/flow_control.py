@@ -14,10 +14,9 @@ for the shell to run.
 from __future__ import annotations
 
 import termios
+import tty
 from collections.abc import Iterator
 from contextlib import contextmanager
-
-IFLAG = 0  # termios.tcgetattr's list: iflag, oflag, cflag, lflag, ispeed, ospeed, cc
 
 
 @contextmanager
@@ -30,7 +29,7 @@ def no_flow_control(fd: int = 0) -> Iterator[None]:
         yield
         return
     during = list(before)
-    during[IFLAG] &= ~(termios.IXON | termios.IXOFF)
+    during[tty.IFLAG] &= ~(termios.IXON | termios.IXOFF)
     termios.tcsetattr(fd, termios.TCSANOW, during)
     try:
         yield

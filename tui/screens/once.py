@@ -117,10 +117,10 @@ def a_closing_palette_s_fault(error: BaseException) -> bool:
     search that fired late. Nothing is lost by letting it pass: the palette is going."""
     if not isinstance(error, NoMatches):
         return False
-    frame = error.__traceback__
-    while frame is not None:
-        palette = frame.tb_frame.f_locals.get("self")
+    entry = error.__traceback__
+    while entry is not None:
+        palette = entry.tb_frame.f_locals.get("self")
         if isinstance(palette, CommandPalette):
             return not palette.query(CommandList)
-        frame = frame.tb_next
+        entry = entry.tb_next
     return False
