@@ -117,11 +117,13 @@ def shown_after(command: list[str], *, cwd: Path, keys: bytes, expected: bytes,
 
 
 def converse(command: list[str], *, cwd: Path, script: list[tuple[bytes, bytes]],
-             size: tuple[int, int] = (100, 30), timeout: float = 120.0) -> Run:
-    """Start ``command`` in a terminal of ``size``; for each ``(expected, keys)`` of
-    ``script``, read until ``expected`` has been written since the last keys (and the output
-    has paused), then type ``keys``; then wait for the command to end."""
-    with _terminal(command, cwd, size, {}) as (process, master):
+             size: tuple[int, int] = (100, 30), timeout: float = 120.0,
+             **variables: str) -> Run:
+    """Start ``command`` in a terminal of ``size`` (with the environment ``variables``);
+    for each ``(expected, keys)`` of ``script``, read until ``expected`` has been written
+    since the last keys (and the output has paused), then type ``keys``; then wait for the
+    command to end."""
+    with _terminal(command, cwd, size, variables) as (process, master):
         output = bytearray()
         deadline = time.monotonic() + timeout
         for expected, keys in script:

@@ -70,6 +70,7 @@ from biceps.tui.changes import (
     zoomed,
 )
 from biceps.tui.commands import KeyCommands
+from biceps.tui.crash_report import text_of, traceback_of, write_crash_report
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.history import History, Step
 from biceps.tui.pacing import LoopTimer, Pacer, cursor_question
@@ -209,6 +210,7 @@ class BicepsApp(App[None]):
         self._backlog = Backlog()
         self._backlog_report_due = False
         self.failure: str | None = None  # the error this app ended on, if it did
+        self.failure_details = ""  # its traceback
         self._rescue = rescue
         self.config: Config | None = None
         self._last_recording: Recording | None = None
@@ -253,12 +255,14 @@ class BicepsApp(App[None]):
             return
         if self.failure is None:
             self.failure = f"{type(error).__name__}: {error}"
+            self.failure_details = traceback_of(error)
         super()._handle_exception(error)
 
     def panic(self, *renderables) -> None:
         # How Textual ends the app on an error in its input thread.
         if self.failure is None:
             self.failure = "an error reading the terminal"
+            self.failure_details = text_of(renderables)
         super().panic(*renderables)
 
     async def on_event(self, event: events.Event) -> None:
@@ -912,11 +916,16 @@ def _run(config: Config, colors: str, fps: float | None, compile_aside: bool,
     app.run()
     if app.failure is None:
         return 0
+    # Written first: the rescue runs in the same terminal, and may fail in turn.
+    report = write_crash_report(app.failure_details, config.path, graphics=choice.graphics,
+                                colours=system)
     rescue = rescued(app, fps)
     if rescue is not None:
         rescue.run()
-    print(f"biceps: stopped on an error it did not expect ({printable(app.failure)}); the "
-          "details are above. Please report them.", file=sys.stderr)
+    details = ("the details are above" if report is None
+               else f"the details are in {printable(report)}")
+    print(f"biceps: stopped on an error it did not expect ({printable(app.failure)}); "
+          f"{details}. Please report them.", file=sys.stderr)
     return 1
 
 

@@ -47,7 +47,8 @@ def test_a_file_named_with_escape_sequences_shows_them_as_text(tmp_path):
     assert run.exit_code == 0
 
 
-def test_an_error_that_gets_through_offers_to_save_and_ends_with_status_1(config_path):
+def test_an_error_that_gets_through_offers_to_save_and_ends_with_status_1(config_path,
+                                                                          tmp_path):
     # The app as installed, but with a fault in one of its keys (l: the light to the right).
     broken = textwrap.dedent(f"""
         import sys
@@ -65,11 +66,17 @@ def test_an_error_that_gets_through_offers_to_save_and_ends_with_status_1(config
         (UPPER_HALF, b"c"),  # an edit, not saved
         (b"", b"l"),  # the fault
         (b"ran into an error", b"s"),  # the rescue: save, then quit
-    ])
+    ], XDG_STATE_HOME=str(tmp_path / "state"))
     assert b"RuntimeError: a fault put there by the test" in run.output
     assert b"biceps: stopped on an error it did not expect" in run.output
     assert run.exit_code == 1
     assert load_config(config_path).arm.length == 32.9  # the edit was saved
+    # The traceback, kept in a crash report that the last line names.
+    (report,) = (tmp_path / "state" / "biceps").iterdir()
+    assert f"the details are in {report}".encode() in run.output.replace(b"\r\n", b"")
+    text = report.read_text()
+    assert "in broken" in text and "RuntimeError: a fault put there by the test" in text
+    assert f"model: {config_path}" in text
 
 
 def _ignores(pid: int, number: int) -> bool:
