@@ -36,8 +36,8 @@ def rescue_question(rescue: Rescue) -> Choice:
         "working)."
     )
     answers = [
-        Answer("s", "Save, then quit", "save", "primary"),
-        Answer("a", "Save as, then quit", "save_as"),
-        Answer("q", "Quit without saving", "quit", "error"),
+        Answer("s", "Save, quit", "save", "primary"),
+        Answer("a", "Save as, quit", "save_as"),
+        Answer("q", "Quit, don't save", "quit", "error"),
     ]
     return Choice("biceps ran into an error", question, answers)

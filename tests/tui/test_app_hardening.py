@@ -13,7 +13,7 @@ import pytest
 from textual import events
 from textual.command import CommandList
 from textual.content import Content
-from textual.widgets import Input, Label
+from textual.widgets import Button, Input, Label
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.tui.app import BicepsApp, rescued
@@ -524,3 +524,24 @@ async def test_a_recording_named_like_markup_is_shown_as_written(biceps, tmp_pat
             assert not any(span.style for span in getattr(shown, "spans", []))  # no bold
         finally:
             release.set()
+
+
+@pytest.mark.parametrize("size, stacked", [((100, 30), False), ((80, 24), True)])
+async def test_every_answer_of_the_rescue_can_be_seen(config, size, stacked):
+    # Four buttons: the dialog widens for them side by side, or stacks them where even the
+    # widest dialog the screen allows is too narrow.
+    app = BicepsApp(config)
+    app.scene = app.scene.with_arm(app.scene.arm.at_length(30.0))
+    app.failure = "Broken: a fault in the app"
+    rescue = rescued(app)
+    async with rescue.run_test(size=size) as pilot:
+        await pilot.pause()
+        await pilot.pause()
+        box = rescue.screen.query_one(".dialog-box").content_region
+        buttons = rescue.screen.query(Button)
+        assert len(buttons) == 4
+        for button in buttons:
+            assert box.contains_region(button.region)
+            assert button.region.width >= len(str(button.label))
+        rows = {button.region.y for button in buttons}
+        assert len(rows) == (4 if stacked else 1)

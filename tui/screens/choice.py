@@ -22,6 +22,21 @@ class Answer:
     variant: str = "default"
 
 
+class ButtonRow(Horizontal):
+    """The answers' buttons side by side, the dialog widened for them as far as the screen
+    allows; one above another where they still do not fit (an 80-column terminal)."""
+
+    _natural_width: int | None = None  # the buttons' width side by side
+
+    def on_resize(self, event: events.Resize) -> None:
+        if self._natural_width is None:
+            self._natural_width = event.virtual_size.width
+            box = self.parent
+            around = box.outer_size.width - event.size.width  # the box's border and padding
+            box.styles.width = max(box.outer_size.width, self._natural_width + around)
+        self.set_class(self._natural_width > event.size.width, "-stacked")
+
+
 class Choice(Dialog[str | None]):
     """Dismisses with the chosen answer's value, or ``None`` on escape or Cancel."""
 
@@ -37,7 +52,7 @@ class Choice(Dialog[str | None]):
         with Vertical(classes="dialog-box") as box:
             box.border_title = self._title
             yield Label(self._question, markup=False)
-            with Horizontal(classes="dialog-buttons"):
+            with ButtonRow(classes="dialog-buttons"):
                 for answer in self._answers:
                     yield Button(f"{answer.label} ({answer.key})", variant=answer.variant,
                                  name=answer.value)
