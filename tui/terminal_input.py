@@ -22,12 +22,17 @@ and what follows it, unread as paste, it types as keys once the sequence has gro
 to be one: a paste holding an escape (terminal output copied with its colours) typed its
 text, and ``/`` subdivided the muscle, ``[`` rolled the model. Inside a paste the decoder
 writes an escape as U+FFFD, as a stray byte.
+
+A paste whose end never comes (a terminal that died part way, or a storm of random input)
+would make every key after it pasted text, ``q`` included, for ever: Textual's parser has
+no timeout. A terminal writes a paste in one burst, so after a silence of
+:data:`PASTE_SILENCE` the next input ends it first.
 """
 
 from __future__ import annotations
 
 import codecs
-from functools import partial
+from time import monotonic
 from typing import Callable
 
 from textual import events
@@ -55,6 +60,7 @@ class TerminalDecoder(codecs.getincrementaldecoder("utf-8")):  # type: ignore[mi
 
 PASTE_START = "\x1b[200~"
 PASTE_END = "\x1b[201~"
+PASTE_SILENCE = 1.0  # seconds without input inside a paste after which it is over
 
 
 class PasteGuard:
@@ -62,13 +68,21 @@ class PasteGuard:
     but its end written as U+FFFD. A read may end part way into the paste's end: that part
     is held until the next read says whether it is the end."""
 
-    def __init__(self) -> None:
+    def __init__(self, clock: Callable[[], float] = monotonic) -> None:
         self._inside = False
         self._started = 0  # characters of PASTE_START just read, outside a paste
         self._held = ""  # inside a paste: the start of what may be its end
+        self._clock = clock
+        self._last_read = clock()
 
     def read(self, text: str) -> str:
         out = []
+        now = self._clock()
+        if self._inside and now - self._last_read > PASTE_SILENCE:
+            # The end is not coming: end the paste before this input, which is typed.
+            out.append(self._held.replace("\x1b", "\ufffd") + PASTE_END)
+            self._inside, self._held = False, ""
+        self._last_read = now
         for character in text:
             if not self._inside:
                 out.append(character)

@@ -22,7 +22,12 @@ from biceps.tui.screens.help import HelpLog, HelpScreen
 from biceps.tui.screens.main import MainScreen
 from biceps.tui.screens.once import Palette
 from biceps.tui.screens.prompt import LONGEST, Prompt
-from biceps.tui.terminal_input import LenientParser, decode_leniently
+from biceps.tui.terminal_input import (
+    PASTE_SILENCE,
+    LenientParser,
+    PasteGuard,
+    decode_leniently,
+)
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.recorder import Recorder
 from biceps.tui.widgets.stats import Stats
@@ -51,6 +56,32 @@ def test_a_paste_holding_escapes_is_pasted_not_typed(cut):
     assert [type(event).__name__ for event in parsed] == ["Paste", "Key"]
     assert parsed[0].text == "/\ufffd[/[[x\ufffd\ufffd[20/\ufffd]52;c;eA==\x07"
     assert parsed[1].key == "c"
+
+
+class Clock:
+    def __init__(self) -> None:
+        self.now = 0.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+@pytest.mark.parametrize("start", [b"\x1b[200~", b"\x1b[200~ab\x1b[20"])
+def test_a_paste_whose_end_never_comes_ends_at_a_silence(start):
+    # A start with no end made every key after it pasted text, q too, for ever.
+    clock = Clock()
+    guard, parser = PasteGuard(clock), LenientParser()
+    parsed = list(parser.feed(guard.read(start.decode())))
+    clock.now += PASTE_SILENCE / 2
+    parsed += parser.feed(guard.read("cd"))  # soon after: still the paste
+    assert parsed == []
+    clock.now += PASTE_SILENCE * 1.01
+    parsed += parser.feed(guard.read("q"))
+    assert [type(event).__name__ for event in parsed] == ["Paste", "Key"]
+    assert parsed[0].text == start[6:].decode().replace("\x1b", "\ufffd") + "cd"
+    assert parsed[1].key == "q"
+    # Its true end, should it come after all, is read as nothing.
+    assert [event.key for event in parser.feed(guard.read("\x1b[201~x"))] == ["x"]
 
 
 async def _burst(session, *keys: str) -> None:
