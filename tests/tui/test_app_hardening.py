@@ -25,7 +25,6 @@ from biceps.tui.screens.prompt import LONGEST, Prompt
 from biceps.tui.terminal_input import (
     PASTE_SILENCE,
     LenientParser,
-    PasteGuard,
     decode_leniently,
 )
 from biceps.tui.widgets.node_table import NodeTable
@@ -68,20 +67,38 @@ class Clock:
 
 @pytest.mark.parametrize("start", [b"\x1b[200~", b"\x1b[200~ab\x1b[20"])
 def test_a_paste_whose_end_never_comes_ends_at_a_silence(start):
-    # A start with no end made every key after it pasted text, q too, for ever.
+    # A start with no end made every key after it pasted text, q too, for ever. The input
+    # thread ticks the parser after each wait for input.
     clock = Clock()
-    guard, parser = PasteGuard(clock), LenientParser()
-    parsed = list(parser.feed(guard.read(start.decode())))
+    parser = LenientParser(clock=clock)
+    parsed = list(parser.feed(start.decode()))
     clock.now += PASTE_SILENCE / 2
-    parsed += parser.feed(guard.read("cd"))  # soon after: still the paste
+    parsed += parser.tick()
+    parsed += parser.feed("cd")  # soon after: still the paste
+    clock.now += PASTE_SILENCE / 2
+    parsed += parser.tick()
     assert parsed == []
-    clock.now += PASTE_SILENCE * 1.01
-    parsed += parser.feed(guard.read("q"))
+    clock.now += PASTE_SILENCE / 2 * 1.01
+    parsed += parser.tick()
+    parsed += parser.feed("q")
     assert [type(event).__name__ for event in parsed] == ["Paste", "Key"]
     assert parsed[0].text == start[6:].decode().replace("\x1b", "\ufffd") + "cd"
     assert parsed[1].key == "q"
     # Its true end, should it come after all, is read as nothing.
-    assert [event.key for event in parser.feed(guard.read("\x1b[201~x"))] == ["x"]
+    assert [event.key for event in parser.feed("\x1b[201~x")] == ["x"]
+
+
+def test_a_paste_read_late_is_not_cut_off():
+    # The input thread kept waiting (a loaded machine) finds the rest of the paste queued
+    # and reads it before its next tick: a silence it never saw.
+    clock = Clock()
+    parser = LenientParser(clock=clock)
+    parsed = list(parser.feed("\x1b[200~ab"))
+    clock.now += PASTE_SILENCE * 5
+    parsed += parser.feed("c\x1b[201~q")
+    parsed += parser.tick()
+    assert [type(event).__name__ for event in parsed] == ["Paste", "Key"]
+    assert parsed[0].text == "abc"
 
 
 async def _burst(session, *keys: str) -> None:
