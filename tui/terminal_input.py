@@ -123,7 +123,10 @@ class LenientParser(XTermParser):
         if not data:  # the end of input
             return super().feed(data)
         self._last_input = self._clock()
-        return super().feed(self._paste.read(data))
+        # Empty when all of it is held (the start of what may be the paste's end), which
+        # must not reach Textual's parser: to it, no text is the end of input.
+        guarded = self._paste.read(data)
+        return super().feed(guarded) if guarded else ()
 
     def tick(self) -> Iterable[events.Event]:
         # Called by the input thread after each wait for input (at most 0.1 s).

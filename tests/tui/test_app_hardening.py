@@ -88,6 +88,18 @@ def test_a_paste_whose_end_never_comes_ends_at_a_silence(start):
     assert [event.key for event in parser.feed("\x1b[201~x")] == ["x"]
 
 
+def test_a_read_held_whole_is_not_the_end_of_input():
+    # Inside a paste, a read of only an escape is held (it may begin the paste's end), and
+    # nothing of it is passed on: to Textual's parser no text is the end of input, after
+    # which every read raised ParseError and ended the app (found by the storm).
+    parser = LenientParser()
+    parsed = list(parser.feed("\x1b[200~a"))
+    parsed += parser.feed("\x1b")
+    parsed += parser.feed("b\x1b[201~q")
+    assert [type(event).__name__ for event in parsed] == ["Paste", "Key"]
+    assert parsed[0].text == "a\ufffdb"
+
+
 def test_a_paste_read_late_is_not_cut_off():
     # The input thread kept waiting (a loaded machine) finds the rest of the paste queued
     # and reads it before its next tick: a silence it never saw.
