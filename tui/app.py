@@ -255,15 +255,20 @@ class BicepsApp(App[None]):
             return
         if self.failure is None:
             self.failure = f"{type(error).__name__}: {error}"
-            self.failure_details = traceback_of(error)
+            self.failure_details = f"{traceback_of(error)}\n{self._screens_now()}\n"
         super()._handle_exception(error)
 
     def panic(self, *renderables) -> None:
         # How Textual ends the app on an error in its input thread.
         if self.failure is None:
             self.failure = "an error reading the terminal"
-            self.failure_details = text_of(renderables)
+            self.failure_details = f"{text_of(renderables)}\n{self._screens_now()}\n"
         super().panic(*renderables)
+
+    def _screens_now(self) -> str:
+        # For the crash report: a fault may lie in what is open, and in what order.
+        names = ", ".join(type(screen).__name__ for screen in self.screen_stack)
+        return f"screens, bottom to top: {names or 'none'}; focused: {type(self.focused).__name__}"
 
     async def on_event(self, event: events.Event) -> None:
         if isinstance(event, FROM_THE_TERMINAL) and not self._answers(event):

@@ -504,6 +504,7 @@ async def test_an_unexpected_error_offers_to_save_the_model_it_left(config, conf
     monkeypatch.undo()
     assert app.failure == "Broken: a fault in the app"
     assert "in broken" in app.failure_details  # the traceback, for the crash report
+    assert "screens, bottom to top: MainScreen;" in app.failure_details
     assert app.return_code == 1
     rescue = rescued(app)
     async with rescue.run_test() as pilot:
