@@ -340,7 +340,7 @@ class BicepsApp(App[None]):
         if self._notice:
             self.notify(self._notice, timeout=12, markup=False)
         if self._rescue is not None:
-            self._ask(self._offer_rescue)
+            self.ask(self._offer_rescue)
 
     def _display(self, screen: Screen, renderable: RenderableType | None) -> None:
         # Real pixels are painted over cells that Textual may write again without a new
@@ -618,9 +618,9 @@ class BicepsApp(App[None]):
         if not self._asking and not isinstance(self.screen, HelpScreen):
             self.push_screen(HelpScreen())
 
-    def _ask(self, dialogs: Callable[[], Awaitable[object]]) -> None:
+    def ask(self, dialogs: Callable[[], Awaitable[object]]) -> None:
         """Run ``dialogs``, a coroutine function that asks in dialogs, unless others are
-        already asking.
+        already asking. Every dialog of the app and its widgets opens through here.
 
         A dialog opens when its worker runs, which is after the keys that came with its
         key: a burst of e, ctrl+d and ctrl+o would open three dialogs on one another, and
@@ -640,7 +640,7 @@ class BicepsApp(App[None]):
         self.run_worker(asking(), group="dialogs")
 
     def action_save(self) -> None:
-        self._ask(self._save_or_ask)
+        self.ask(self._save_or_ask)
 
     async def _save_or_ask(self) -> bool:
         """Save to the file the model came from; for the bundled model, which is part of
@@ -700,7 +700,7 @@ class BicepsApp(App[None]):
                      suggester or PathSuggester((".toml",)))
 
     def action_save_as(self) -> None:
-        self._ask(self._save_as)
+        self.ask(self._save_as)
 
     async def _save_as(self) -> bool:
         """Ask for a file and save the model there; True if saved."""
@@ -724,7 +724,7 @@ class BicepsApp(App[None]):
         return answer is not None
 
     def action_open(self) -> None:
-        self._ask(self._open)
+        self.ask(self._open)
 
     async def _open(self) -> None:
         # The file open now, to change: a bundled model's own path, for there is nothing
@@ -749,7 +749,7 @@ class BicepsApp(App[None]):
         self.scene = self._saved
 
     def action_export(self) -> None:
-        self._ask(self._export)
+        self.ask(self._export)
 
     async def _export(self) -> None:
         async def check(path: Path, size: tuple[int, int]) -> bool:
@@ -794,7 +794,7 @@ class BicepsApp(App[None]):
         self.screen_stack[0].query_one(Plots).toggle()
 
     def action_record(self) -> None:
-        self._ask(self._record)
+        self.ask(self._record)
 
     async def _record(self) -> None:
         recorder = self.screen_stack[0].query_one(Recorder)

@@ -111,6 +111,9 @@ def test_no_input_ends_the_app_and_the_model_keeps_its_rules(tmp_path, monkeypat
     assert sum(delivered) >= EVENTS
 
 
+DEEPEST = 6  # the main screen, the help, a palette, a dialog and its question, a palette
+
+
 async def _drive(folder, bursts) -> int:
     path = folder / "model.toml"
     shutil.copy(DEFAULT_CONFIG, path)
@@ -133,6 +136,10 @@ async def _drive(folder, bursts) -> int:
                 await pilot.resize_terminal(*size)
             await _taken(app)
             assert app.failure is None
+            # One dialog at a time (of the app's own, which may ask a second question), and
+            # the help and a palette each at most once, under or over it: a stack that grew
+            # with the keys ended, at about 45 screens, in Textual's RecursionError.
+            assert len(app.screen_stack) <= DEEPEST, app.screen_stack
         await pilot.resize_terminal(80, 24)
         await _taken(app)
         await pilot.pause()

@@ -120,6 +120,17 @@ async def _burst(session, *keys: str) -> None:
     await session.settle()
 
 
+async def test_a_burst_of_enters_on_the_node_table_opens_one_dialog(biceps):
+    # Each enter opened a dialog of its own, each over the last; a storm's stacked about 45
+    # before Textual's compositor, each drawing the ones beneath it, ran out of stack.
+    async with biceps() as session:
+        session.app.screen.query_one(NodeTable).focus()
+        await _burst(session, "enter", "enter", "enter", "e", "enter", "ctrl+o", "enter")
+        assert [type(screen).__name__ for screen in session.app.screen_stack] == [
+            "MainScreen", "Prompt"]
+        assert session.app.screen.query_one(Label).render().plain.startswith("Radius")
+
+
 # Bursts that ended the app with ScreenStackError or KeyError: 0 (Textual 8.2's own faults,
 # tui/screens/once.py).
 @pytest.mark.parametrize("keys", [

@@ -7,6 +7,7 @@ there are. (A DataTable updated cell by cell took 0.3 s a contraction at 5,000 n
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Callable
 
 from rich.segment import Segment
@@ -206,13 +207,16 @@ class NodeTable(ScrollView, can_focus=True):
         self.cursor_row = row % max(self.row_count, 1)
 
     def action_edit_node(self) -> None:
-        # The keys typed with this one (t, a held c) may have changed the muscle, but the
-        # table shows a burst's numbers only after the burst (MainScreen._show_numbers, put
-        # on the app's queue then): open the node behind them, on the muscle as it is now,
-        # which is the one OK changes.
-        self.app.call_later(self._open_node, self.cursor_row)
+        # Asked through the app, which opens one dialog at a time (BicepsApp.ask): a burst
+        # of enters (or an enter beside e, ctrl+o) stacked a dialog each, each drawing the
+        # ones beneath it, until Textual's compositor ran out of Python's stack
+        # (RecursionError, in storms).
+        self.app.ask(partial(self._edit_node, self.cursor_row))
 
-    def _open_node(self, index: int) -> None:
+    async def _edit_node(self, index: int) -> None:
+        # The keys typed with enter (t, a held c) may have changed the muscle, but the table
+        # shows a burst's numbers only after the burst (MainScreen._show_numbers): the dialog
+        # opens on the muscle as it is when it opens, which is the one OK changes.
         muscle = self._muscle
         if muscle is None:
             return
@@ -221,17 +225,16 @@ class NodeTable(ScrollView, can_focus=True):
         def check(radius: float, growth: float) -> None:
             with_node(muscle, index, radius, growth)
 
-        def request(values: tuple[float, float] | None) -> None:
-            if values is not None:
-                radius, growth = values
-                self._request(lambda current: with_node(current, index, radius, growth),
-                              f"node {index + 1} edited")
-
         fields = [
             _number_field(f"Radius ({_range(RADIUS)})", muscle.radii[index]),
             _number_field(f"Growth ({_range(GROWTH)})", muscle.growth[index]),
         ]
-        self.app.push_screen(Prompt(f"Node {index + 1}", fields, check=check), request)
+        values = await self.app.push_screen_wait(
+            Prompt(f"Node {index + 1}", fields, check=check))
+        if values is not None:
+            radius, growth = values
+            self._request(lambda current: with_node(current, index, radius, growth),
+                          f"node {index + 1} edited")
 
     def action_insert_node(self) -> None:
         index = self.cursor_row
