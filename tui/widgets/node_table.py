@@ -7,6 +7,7 @@ there are. (A DataTable updated cell by cell took 0.3 s a contraction at 5,000 n
 
 from __future__ import annotations
 
+import asyncio
 from functools import partial
 from typing import Callable
 
@@ -215,8 +216,12 @@ class NodeTable(ScrollView, can_focus=True):
 
     async def _edit_node(self, index: int) -> None:
         # The keys typed with enter (t, a held c) may have changed the muscle, but the table
-        # shows a burst's numbers only after the burst (MainScreen._show_numbers): the dialog
-        # opens on the muscle as it is when it opens, which is the one OK changes.
+        # shows a burst's numbers only after the burst (MainScreen._show_numbers, put on the
+        # app's queue then): the dialog opens behind them, on the muscle as it is now, which
+        # is the one OK changes.
+        behind = asyncio.Event()
+        self.app.call_later(behind.set)
+        await behind.wait()
         muscle = self._muscle
         if muscle is None:
             return
