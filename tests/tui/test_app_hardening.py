@@ -7,6 +7,7 @@ import random
 import shutil
 import stat
 import threading
+import time
 from pathlib import Path
 
 import pytest
@@ -22,11 +23,7 @@ from biceps.tui.screens.help import HelpLog, HelpScreen
 from biceps.tui.screens.main import MainScreen
 from biceps.tui.screens.once import Palette
 from biceps.tui.screens.prompt import LONGEST, Prompt
-from biceps.tui.terminal_input import (
-    PASTE_SILENCE,
-    LenientParser,
-    decode_leniently,
-)
+from biceps.tui.terminal_input import LenientParser, decode_leniently
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.recorder import Recorder
 from biceps.tui.widgets.stats import Stats
@@ -57,60 +54,21 @@ def test_a_paste_holding_escapes_is_pasted_not_typed(cut):
     assert parsed[1].key == "c"
 
 
-class Clock:
-    def __init__(self) -> None:
-        self.now = 0.0
-
-    def __call__(self) -> float:
-        return self.now
-
-
-@pytest.mark.parametrize("start", [b"\x1b[200~", b"\x1b[200~ab\x1b[20"])
-def test_a_paste_whose_end_never_comes_ends_at_a_silence(start):
-    # A start with no end made every key after it pasted text, q too, for ever. The input
-    # thread ticks the parser after each wait for input.
-    clock = Clock()
-    parser = LenientParser(clock=clock)
-    parsed = list(parser.feed(start.decode()))
-    clock.now += PASTE_SILENCE / 2
-    parsed += parser.tick()
-    parsed += parser.feed("cd")  # soon after: still the paste
-    clock.now += PASTE_SILENCE / 2
-    parsed += parser.tick()
-    assert parsed == []
-    clock.now += PASTE_SILENCE / 2 * 1.01
-    parsed += parser.tick()
-    parsed += parser.feed("q")
+def test_a_paste_stays_a_paste_however_long_its_rest_takes_to_come():
+    # Over a slow link, or from a terminal (or the storm's driver) busy on a loaded machine,
+    # a paste comes in parts with pauses between them: in a 60 s storm on 2 cores the input
+    # thread saw pauses of 0.6 to 1.3 s inside pastes. Ending a paste at such a pause (tried:
+    # after 1 s) typed its rest as keys: q quit, ctrl+s saved, in 8 of 9 storms. So a paste
+    # ends only with its end, as in Textual.
+    decode, parser = decode_leniently(), LenientParser()
+    parsed = list(parser.feed(decode(b"\x1b[200~ab")))
+    for _ in range(15):  # the input thread's ticks, 0.1 s apart
+        time.sleep(0.1)
+        parsed += parser.tick()
+    parsed += parser.feed(decode(b"q\x13\x1b[201~c"))
     assert [type(event).__name__ for event in parsed] == ["Paste", "Key"]
-    assert parsed[0].text == start[6:].decode().replace("\x1b", "\ufffd") + "cd"
-    assert parsed[1].key == "q"
-    # Its true end, should it come after all, is read as nothing.
-    assert [event.key for event in parser.feed("\x1b[201~x")] == ["x"]
-
-
-def test_a_read_held_whole_is_not_the_end_of_input():
-    # Inside a paste, a read of only an escape is held (it may begin the paste's end), and
-    # nothing of it is passed on: to Textual's parser no text is the end of input, after
-    # which every read raised ParseError and ended the app (found by the storm).
-    parser = LenientParser()
-    parsed = list(parser.feed("\x1b[200~a"))
-    parsed += parser.feed("\x1b")
-    parsed += parser.feed("b\x1b[201~q")
-    assert [type(event).__name__ for event in parsed] == ["Paste", "Key"]
-    assert parsed[0].text == "a\ufffdb"
-
-
-def test_a_paste_read_late_is_not_cut_off():
-    # The input thread kept waiting (a loaded machine) finds the rest of the paste queued
-    # and reads it before its next tick: a silence it never saw.
-    clock = Clock()
-    parser = LenientParser(clock=clock)
-    parsed = list(parser.feed("\x1b[200~ab"))
-    clock.now += PASTE_SILENCE * 5
-    parsed += parser.feed("c\x1b[201~q")
-    parsed += parser.tick()
-    assert [type(event).__name__ for event in parsed] == ["Paste", "Key"]
-    assert parsed[0].text == "abc"
+    assert parsed[0].text == "abq\x13"
+    assert parsed[1].key == "c"
 
 
 async def _burst(session, *keys: str) -> None:
