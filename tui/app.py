@@ -253,22 +253,23 @@ class BicepsApp(App[None]):
         # note it, so that run_app can offer to save the model and exit with an error.
         if a_closing_palette_s_fault(error):
             return
-        if self.failure is None:
-            self.failure = f"{type(error).__name__}: {error}"
-            self.failure_details = f"{traceback_of(error)}\n{self._screens_now()}\n"
+        self._note_failure(f"{type(error).__name__}: {error}", traceback_of(error))
         super()._handle_exception(error)
 
     def panic(self, *renderables) -> None:
         # How Textual ends the app on an error in its input thread.
-        if self.failure is None:
-            self.failure = "an error reading the terminal"
-            self.failure_details = f"{text_of(renderables)}\n{self._screens_now()}\n"
+        self._note_failure("an error reading the terminal", text_of(renderables))
         super().panic(*renderables)
 
-    def _screens_now(self) -> str:
-        # For the crash report: a fault may lie in what is open, and in what order.
+    def _note_failure(self, summary: str, details: str) -> None:
+        """Keep the first error the app ends on, in a line and in full for the crash
+        report, with the screens open (a fault may lie in what is open, and in what order)."""
+        if self.failure is not None:
+            return
         names = ", ".join(type(screen).__name__ for screen in self.screen_stack)
-        return f"screens, bottom to top: {names or 'none'}; focused: {type(self.focused).__name__}"
+        self.failure = summary
+        self.failure_details = (f"{details}\nscreens, bottom to top: {names or 'none'}; "
+                                f"focused: {type(self.focused).__name__}\n")
 
     async def on_event(self, event: events.Event) -> None:
         if isinstance(event, FROM_THE_TERMINAL) and not self._answers(event):
@@ -620,7 +621,8 @@ class BicepsApp(App[None]):
 
     def ask(self, dialogs: Callable[[], Awaitable[object]]) -> None:
         """Run ``dialogs``, a coroutine function that asks in dialogs, unless others are
-        already asking. Every dialog of the app and its widgets opens through here.
+        already asking. The dialogs that ask for something (files, exports, recordings, a node's
+        values) open through here.
 
         A dialog opens when its worker runs, which is after the keys that came with its
         key: a burst of e, ctrl+d and ctrl+o would open three dialogs on one another, and
