@@ -376,10 +376,13 @@ def doctor(graphics: str, colors: str) -> None:
     """Ask this terminal what it can show, and say what the app would use and why."""
     from biceps.tui import choose, detect
 
+    from biceps.tui.textual_private import describe
+
     answers, place = detect.ask(), detect.Place.here()
     _print(f"biceps doctor: --graphics {graphics} --colors {colors}\n"
            + choose.report(graphics, answers, place, choose.choose(graphics, answers, place),
-                           choose.colours(colors, answers, place)))
+                           choose.colours(colors, answers, place))
+           + f"\n  {'textual':<15} {describe()}")
 
 
 @main.command()

@@ -19,9 +19,7 @@ from time import monotonic
 from typing import Awaitable, Callable, get_args
 
 import textual.constants
-from rich.console import RenderableType
 from textual import events, on, work
-from textual._compositor import CompositorUpdate
 from textual.app import App
 from textual.binding import Binding
 from textual.command import CommandPalette
@@ -85,6 +83,8 @@ from biceps.tui.screens.prompt import Field, Prompt
 from biceps.tui.screens.record import RecordPrompt, as_recording
 from biceps.tui.suggest import ModelSuggester, PathSuggester
 from biceps.tui.terminal_input import read_terminal_leniently
+from biceps.tui import textual_private
+from biceps.tui.textual_private import AppHooks, colour_system, write
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.recorder import Recorder, Recording
@@ -125,7 +125,7 @@ class QuitAsked(Message):
     :meth:`BicepsApp.action_quit_in_turn`)."""
 
 
-class BicepsApp(App[None]):
+class BicepsApp(AppHooks):
     CSS_PATH = "app.tcss"
     TITLE = "biceps"
     COMMANDS = App.COMMANDS | {KeyCommands}
@@ -248,13 +248,13 @@ class BicepsApp(App[None]):
         read_terminal_leniently()
         return lean_once_ready(super().get_driver_class())
 
-    def _handle_exception(self, error: Exception) -> None:
-        # Textual ends the app on an error nothing caught (there is no public hook for it):
-        # note it, so that run_app can offer to save the model and exit with an error.
-        if a_closing_palette_s_fault(error):
-            return
+    def lets_pass(self, error: BaseException) -> bool:
+        return a_closing_palette_s_fault(error)
+
+    def ending_on(self, error: BaseException) -> None:
+        # Textual ends the app on an error nothing caught: note it, so that run_app can
+        # offer to save the model and exit with an error.
         self._note_failure(f"{type(error).__name__}: {error}", traceback_of(error))
-        super()._handle_exception(error)
 
     def panic(self, *renderables) -> None:
         # How Textual ends the app on an error in its input thread.
@@ -343,13 +343,11 @@ class BicepsApp(App[None]):
         if self._rescue is not None:
             self.ask(self._offer_rescue)
 
-    def _display(self, screen: Screen, renderable: RenderableType | None) -> None:
+    def screen_written(self, screen: Screen, update: object) -> None:
         # Real pixels are painted over cells that Textual may write again without a new
-        # frame (a dialog closing): the viewport is told what was written. A private
-        # method: Textual is pinned to 8.x.
-        super()._display(screen, renderable)
-        if isinstance(renderable, CompositorUpdate) and isinstance(screen, MainScreen):
-            screen.query_one(Viewport).repainted(renderable)
+        # frame (a dialog closing): the viewport is told what was written.
+        if isinstance(screen, MainScreen):
+            screen.query_one(Viewport).repainted(update)
 
     def on_unmount(self) -> None:
         gc.unfreeze()
@@ -357,10 +355,7 @@ class BicepsApp(App[None]):
     def _ask_cursor_position(self, column: int) -> bool:
         # Written straight to the driver, after the frame already queued there (as
         # App.bell does): the terminal answers once it has read the frame.
-        if self.is_headless or self._driver is None:
-            return False
-        self._driver.write(cursor_question(column))
-        return True
+        return not self.is_headless and write(self, cursor_question(column))
 
     def on_cursor_position(self, event: events.CursorPosition) -> None:
         self.pacer.answered(event.x, event.y)
@@ -893,12 +888,8 @@ def run_app(config: Config, colors: str = "auto", fps: float | None = None,
 
     Returns the exit status: 0, or 1 if the app ended on an error, after offering to save
     the model it had (:func:`rescued`)."""
-    previous = textual.constants.COLOR_SYSTEM
-    try:
-        with no_flow_control():
-            return _run(config, colors, fps, compile_aside, graphics, pixel_scale)
-    finally:
-        textual.constants.COLOR_SYSTEM = previous
+    with no_flow_control():
+        return _run(config, colors, fps, compile_aside, graphics, pixel_scale)
 
 
 def _run(config: Config, colors: str, fps: float | None, compile_aside: bool,
@@ -911,24 +902,28 @@ def _run(config: Config, colors: str, fps: float | None, compile_aside: bool,
     answers = None if graphics == "halfblocks" and colors != "auto" else detect.ask()
     place = detect.Place.here()
     choice = choose(asked, answers, place)
-    # Textual's apps take their colours from this constant as they are made (it read
-    # TEXTUAL_COLOR_SYSTEM once, on import); run_app puts it back after, for a caller that
-    # goes on (a test process) and should keep its own.
+    if choice.graphics not in TEXT and not textual_private.ENABLED:
+        choice = replace(choice, graphics="halfblocks", reason="real pixels are written to "
+                         f"the terminal through Textual's internals, and the app is on "
+                         f"{textual_private.describe()}")
     system = colours(colours_asked, answers, place).system
-    textual.constants.COLOR_SYSTEM = system
     encoder = encoder_for(choice, pixel_scale)
     if compile_aside:
         compile_ahead(config, encoder, palette=system == "256" and choice.graphics in TEXT)
-    app = BicepsApp(config, fps=fps, encoder=encoder, notice=notice(asked, choice))
-    app.run()
-    if app.failure is None:
-        return 0
-    # Written first: the rescue runs in the same terminal, and may fail in turn.
-    report = write_crash_report(app.failure_details, config.path, graphics=choice.graphics,
-                                colours=system)
-    rescue = rescued(app, fps)
-    if rescue is not None:
-        rescue.run()
+    with colour_system(system):  # Textual's apps take it as they are made
+        app = BicepsApp(config, fps=fps, encoder=encoder, notice=notice(asked, choice))
+        app.run()
+        if app.failure is None and app.return_code == 1:  # the public path says no more
+            app.failure = "an error in the app"
+        if app.failure is None:
+            return 0
+        # Written first: the rescue runs in the same terminal, and may fail in turn. On the
+        # public path the app is not told the error, and Textual's traceback above is all.
+        report = None if not app.failure_details else write_crash_report(
+            app.failure_details, config.path, graphics=choice.graphics, colours=system)
+        rescue = rescued(app, fps)
+        if rescue is not None:
+            rescue.run()
     details = ("the details are above" if report is None
                else f"the details are in {printable(report)}")
     print(f"biceps: stopped on an error it did not expect ({printable(app.failure)}); "

@@ -26,7 +26,8 @@ from textual.strip import Strip
 
 from biceps.tui.cells import HALF_BLOCKS, CellRows, Shape, runs, unpacked
 from biceps.tui.encoder import Picture
-from biceps.tui.prerendered import RESET, PrerenderedStrip, codes
+from biceps.tui.prerendered import RESET, codes
+from biceps.tui.textual_private import text_strip
 
 DEFAULT_CELL = (10, 20)  # a terminal's cell in pixels, when it does not say
 
@@ -127,8 +128,7 @@ class TextCells:
             codes, glyphs = self._codes, self.shape.glyphs
             text = "".join([f"{codes[cell]}{glyphs[unpacked(cell)[2]] * length}{RESET}"
                             for cell, length in runs(cells)])
-        return PrerenderedStrip(partial(self._segments, cells), len(cells), text,
-                                self._color_system)
+        return text_strip(partial(self._segments, cells), len(cells), text, self._color_system)
 
     def _segments(self, cells: np.ndarray) -> list[Segment]:
         # Made when Textual asks (tui/prerendered.py), on the UI thread: the styles are

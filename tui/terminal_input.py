@@ -14,7 +14,8 @@ kills its input thread, which ends the app:
 
 Until they are fixed there, the driver is given a decoder that does what a terminal does
 with such a byte, shows U+FFFD in its place, and a parser that drops a sequence it cannot
-read.
+read (``tui/textual_private.py``: both are given through Textual's internals, so not on the
+public path).
 
 The decoder also keeps a paste a paste. Inside a bracketed paste (``ESC [ 200 ~`` to
 ``ESC [ 201 ~``) Textual's parser takes an escape character for the start of a sequence,
@@ -27,12 +28,9 @@ writes an escape as U+FFFD, as a stray byte.
 from __future__ import annotations
 
 import codecs
-from functools import partial
 from typing import Callable
 
-from textual import events
-from textual._xterm_parser import XTermParser  # the parser the driver reads keys with
-from textual.keys import Keys
+from biceps.tui.textual_private import lenient_parser, read_input_with
 
 
 def decode_leniently() -> Callable[..., str]:
@@ -106,24 +104,8 @@ def _lenient_decoder(encoding: str) -> type[codecs.IncrementalDecoder]:
     return TerminalDecoder
 
 
-class LenientParser(XTermParser):
-    """Textual's parser of what the terminal sends, which drops a Kitty key sequence it
-    cannot make sense of (rather than type its characters as keys)."""
-
-    def _parse_extended_key(self, sequence: str) -> list[events.Key] | None:
-        try:
-            return super()._parse_extended_key(sequence)
-        except ValueError:  # a field int() cannot read, such as "97:65"
-            return [events.Key(Keys.Ignore, sequence)]  # what the parser drops
-
-
-def read_terminal_leniently() -> None:
-    """Make Textual's Linux driver read its input with :func:`decode_leniently` and
-    :class:`LenientParser`."""
-    try:
-        from textual.drivers import linux_driver
-    except ImportError:  # no termios: Windows, whose driver reads keys, not bytes
-        return
-    # The driver makes both with the names it imported: give those names these.
-    linux_driver.getincrementaldecoder = _lenient_decoder
-    linux_driver.XTermParser = LenientParser
+def read_terminal_leniently() -> bool:
+    """Make Textual's Linux driver read its input with :func:`decode_leniently`'s decoder and
+    ``tui/textual_private.py``'s lenient parser; False if it cannot be (the public path,
+    Windows)."""
+    return read_input_with(_lenient_decoder, lenient_parser())

@@ -152,8 +152,8 @@ def _draw_triangle_lit(shade, light, i0, i1, i2, screen_xy, screen_z, screen_q, 
 def _visible(triangles, t, screen_xy, outcodes, width, height):
     """Whether triangle t may cover a pixel: inside every clipping plane but the far one
     (a triangle crossing one is left for `clip_triangles`), front-facing, on the screen.
-    A helper, for LLVM to inline: inlined by numba (``@inline``) it made Phong's kernel half
-    as slow again on small pictures, 2.0 to 2.9 ms for 100k triangles at 200x120."""
+    A helper, for LLVM to inline: inlined by numba (``@inline``) it made Phong's kernel
+    slower on small pictures."""
     i0, i1, i2 = triangles[t, 0], triangles[t, 1], triangles[t, 2]
     c0, c1, c2 = outcodes[i0], outcodes[i1], outcodes[i2]
     if c0 & c1 & c2 or (c0 | c1 | c2) & ~FAR:

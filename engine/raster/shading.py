@@ -153,8 +153,8 @@ def shade_phong(pixels, depths, start, end, xc, yc, planes, lighting, hits, shad
     triangle found nearest so far, never once per triangle covering it.
     """
     # x stepped by adding 1, exact for half-integers (and the same x as ``xc + (i - start)``):
-    # converting the unsigned offset to a float, pixel by pixel, cost 0.4 ms of a 7 ms
-    # close-up (x86 has no instruction for it before AVX-512).
+    # converting the unsigned offset to a float, pixel by pixel, is slow (x86 has no
+    # instruction for it before AVX-512).
     x = xc
     y = np.float32(yc)
     for i in range(start, end):

@@ -27,7 +27,7 @@ from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.tui import app as app_module
 from biceps.tui.app import BicepsApp
 from biceps.tui.parse import parse_path
-from biceps.tui.terminal_input import LenientParser, decode_leniently
+from biceps.tui.terminal_input import decode_leniently, lenient_parser
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.stats import Stats
 
@@ -121,7 +121,7 @@ async def _drive(folder, bursts) -> int:
     quits = []
     app.exit = lambda *args, **kwargs: quits.append(args)  # a quit is counted, not done
     app._export_size = "64x36"  # not 1920x1080: exports are many, and each is drawn whole
-    decode, parser, count = decode_leniently(), LenientParser(), 0
+    decode, parser, count = decode_leniently(), lenient_parser()(), 0
     async with app.run_test(size=(80, 24)) as pilot:
         for seed, size in bursts:
             for data in _inputs(seed):

@@ -23,7 +23,8 @@ from biceps.tui.screens.help import HelpLog, HelpScreen
 from biceps.tui.screens.main import MainScreen
 from biceps.tui.screens.once import Palette
 from biceps.tui.screens.prompt import LONGEST, Prompt
-from biceps.tui.terminal_input import LenientParser, decode_leniently
+from biceps.tui.terminal_input import decode_leniently
+from biceps.tui.textual_private import lenient_parser
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.recorder import Recorder
 from biceps.tui.widgets.stats import Stats
@@ -38,7 +39,7 @@ from waiting import until
     (b"\x1b[97;5u", ["ctrl+a"]),  # what it can read, it reads as before
 ])
 def test_the_terminal_is_read_leniently(data, keys):
-    parsed = LenientParser().feed(decode_leniently()(data) + "x")
+    parsed = lenient_parser()().feed(decode_leniently()(data) + "x")
     assert [event.key for event in parsed][:-1] == keys  # the x after shows it is all read
 
 
@@ -48,7 +49,7 @@ def test_a_paste_holding_escapes_is_pasted_not_typed(cut):
     # "/" subdivided the muscle, "[" rolled the model. Read in two parts, cut anywhere.
     data = b"\x1b[200~/\x1b[/[[x\x1b\x1b[20/\x1b]52;c;eA==\x07\x1b[201~c"
     decode = decode_leniently()
-    parsed = list(LenientParser().feed(decode(data[:cut]) + decode(data[cut:])))
+    parsed = list(lenient_parser()().feed(decode(data[:cut]) + decode(data[cut:])))
     assert [type(event).__name__ for event in parsed] == ["Paste", "Key"]
     assert parsed[0].text == "/\ufffd[/[[x\ufffd\ufffd[20/\ufffd]52;c;eA==\x07"
     assert parsed[1].key == "c"
@@ -60,7 +61,7 @@ def test_a_paste_stays_a_paste_however_long_its_rest_takes_to_come():
     # thread saw pauses of 0.6 to 1.3 s inside pastes. Ending a paste at such a pause (tried:
     # after 1 s) typed its rest as keys: q quit, ctrl+s saved, in 8 of 9 storms. So a paste
     # ends only with its end, as in Textual.
-    decode, parser = decode_leniently(), LenientParser()
+    decode, parser = decode_leniently(), lenient_parser()()
     parsed = list(parser.feed(decode(b"\x1b[200~ab")))
     for _ in range(15):  # the input thread's ticks, 0.1 s apart
         time.sleep(0.1)

@@ -4,6 +4,8 @@ again when Textual repaints the cells under it."""
 
 from __future__ import annotations
 
+import pytest
+
 import numpy as np
 from textual._compositor import ChopsUpdate, LayoutUpdate
 from textual.geometry import Region, Size
@@ -13,6 +15,9 @@ from biceps.tui.app import BicepsApp
 from biceps.tui.pixels import ImageEncoder
 from biceps.tui.widgets.viewport import Viewport
 from waiting import until
+
+# What only the private path does (tui/textual_private.py).
+pytestmark = pytest.mark.usefixtures("private_path")
 
 
 class Numbered(ImageEncoder):

@@ -13,8 +13,11 @@ from textual.widget import Widget
 from biceps.tui.halfblocks import HalfBlocks
 from biceps.tui.palette import Palette256
 from biceps.tui.palette import colour as palette_colour
-from biceps.tui.prerendered import PrerenderedStrip
+from biceps.tui.textual_private import PrerenderedStrip, framed
 from biceps.tui.widgets.viewport import Viewport
+
+# What only the private path does (tui/textual_private.py).
+pytestmark = pytest.mark.usefixtures("private_path")
 
 FRAME = np.random.default_rng(7).integers(0, 256, (12, 40, 3), dtype=np.uint8)
 FRAME[:, 10:30] = (20, 30, 40)  # runs of equal cells too, written as spaces
@@ -56,10 +59,10 @@ def test_a_framed_line_is_written_as_its_sides_around_it(system):
     console = Console(color_system=system, force_terminal=True)
     line = encoder.encode(frame).strips[3]
     left, right = Strip([*Strip.blank(1)]), Strip.blank(2).apply_style(Console().get_style("red"))
-    framed = line.framed(left, right, console)
-    assert list(framed) == [*left, *line, *right]
-    assert framed.cell_length == line.cell_length + 3
-    assert framed.render(console) == _as_textual_writes(framed, console)
+    joined = framed(line, left, right, console)
+    assert list(joined) == [*left, *line, *right]
+    assert joined.cell_length == line.cell_length + 3
+    assert joined.render(console) == _as_textual_writes(joined, console)
 
 
 def _has_segments(strip: Strip) -> bool:
@@ -74,15 +77,15 @@ def test_a_line_is_written_without_making_its_segments():
     strips = HalfBlocks().encode(FRAME).strips
     console = Console(color_system="truecolor", force_terminal=True)
     left, right = Strip.blank(1), Strip.blank(1)
-    framed = [strip.framed(left, right, console) for strip in strips]
-    for line in framed + strips:
+    joined = [framed(strip, left, right, console) for strip in strips]
+    for line in joined + strips:
         # What the compositor does with a line that nothing covers.
         (whole,) = line.divide([line.cell_length, line.cell_length + 5])
         assert whole is line and line.crop(0, line.cell_length) is line
         line.render(console)
-    assert not any(_has_segments(line) for line in framed + strips)
-    assert list(framed[4]) == [*left, *strips[4], *right]  # made once asked for
-    assert _has_segments(framed[4]) and _has_segments(strips[4])
+    assert not any(_has_segments(line) for line in joined + strips)
+    assert list(joined[4]) == [*left, *strips[4], *right]  # made once asked for
+    assert _has_segments(joined[4]) and _has_segments(strips[4])
     assert [piece.cell_length for piece in strips[5].divide([10, 40])] == [10, 30]
 
 
@@ -92,8 +95,8 @@ async def test_the_viewport_s_lines_are_composed_without_their_segments(biceps):
         await session.pilot.press("right")
         await session.settle()
         session.app.screen._compositor.render_update(full=True)  # as a repaint does
-        framed = [framed for _, _, framed in viewport._framed_lines.values()]
-        assert framed and not any(_has_segments(line) for line in framed)
+        lines = [line for _, _, line in viewport._framed_lines.values()]
+        assert lines and not any(_has_segments(line) for line in lines)
 
 
 def _lines(viewport: Viewport, crop: Region) -> tuple[list[Strip], list[Strip]]:

@@ -134,7 +134,7 @@ def _as_textual_writes_it(app) -> Screen:
     ))
 
 
-async def test_the_viewport_writes_a_frame_as_textual_would(biceps):
+async def test_the_viewport_writes_a_frame_as_textual_would(biceps, private_path):
     written: list[str] = []
     async with biceps(size=(100, 30)) as session:
         app, viewport = session.app, session.app.screen.query_one(Viewport)
@@ -154,7 +154,7 @@ async def test_the_viewport_writes_a_frame_as_textual_would(biceps):
         assert text.startswith("\x1b[?2026h") == app._sync_available
 
 
-async def test_a_frame_goes_through_textual_while_something_is_over_the_picture(config,
+async def test_a_frame_goes_through_textual_while_something_is_over_the_picture(private_path, config,
                                                                                painted):
     written: list[str] = []
     app = BicepsApp(config)

@@ -12,7 +12,8 @@ that are dropped.
 The palette has more faults, guarded here too: page down before its list has been laid
 out (ctrl+p then page down at once) looks up a line the list has not made yet, KeyError: 0;
 and a key typed just before it closed starts a search that ends after it has gone, and
-looks for its list there, NoMatches. So do its timers and watchers (the busy indicator,
+looks for its list there, NoMatches (guarded in ``tui/textual_private.py``, with a click
+outside it in a window shrunk since). So do its timers and watchers (the busy indicator,
 "No matches found"), firing as it closes: :func:`a_closing_palette_s_fault` tells the app
 to let those pass.
 """
@@ -21,17 +22,16 @@ from __future__ import annotations
 
 from typing import TypeVar
 
-from textual import on, work
+from textual import on
 from textual.await_complete import AwaitComplete
 from textual.binding import Binding
 from textual.command import CommandList, CommandPalette
 from textual.css.query import NoMatches
-from textual.errors import NoWidget
-from textual.events import Click
 from textual.screen import ModalScreen
 from textual.widgets import Input, OptionList
 
 from biceps.tui.screens.sized import LatestSize
+from biceps.tui.textual_private import guarded_palette
 
 
 Result = TypeVar("Result")
@@ -52,14 +52,14 @@ class DismissedOnce(LatestSize[Result]):
 
 # DismissedOnce goes last among the bases: Textual takes a screen's CSS and component
 # classes from its first base and that base's first bases, which must be ModalScreen's and
-# CommandPalette's.
+# CommandPalette's (or the guarded palette's, whose first base is CommandPalette).
 
 
 class Dialog(ModalScreen[Result], DismissedOnce[Result]):
     """A modal dialog, dismissed once."""
 
 
-class Palette(CommandPalette, DismissedOnce[None]):
+class Palette(guarded_palette(), DismissedOnce[None]):
     """Textual's command palette, which runs one command, once, and pages only a list it has
     laid out."""
 
@@ -79,26 +79,6 @@ class Palette(CommandPalette, DismissedOnce[None]):
         if self._dismissed:
             event.prevent_default()
             event.stop()
-
-    @work(exclusive=True, group=CommandPalette._GATHER_COMMANDS_GROUP)
-    async def _gather_commands(self, search_value: str) -> None:
-        # Textual's search, started as the palette mounts and at each change of its input,
-        # runs when the app gets to it: in a burst of keys (ctrl+p escape), or as the app
-        # closes, the palette's list may be gone by then, NoMatches. Textual is pinned to 8.x.
-        try:
-            await CommandPalette._gather_commands.__wrapped__(self, search_value)
-        except NoMatches:
-            if self.query(CommandList):  # the list is there: a fault of another kind
-                raise
-
-    def _on_click(self, event: Click) -> None:
-        # A click outside the palette closes it (Textual's handler, next): it looks for
-        # what was clicked, and in a window shrunk since (to 1x3, say) there is nothing
-        # there, NoWidget. Such a click does nothing.
-        try:
-            self.get_widget_at(event.screen_x, event.screen_y)
-        except NoWidget:
-            event.prevent_default()
 
     def action_page(self, direction: int) -> None:
         lists = self.query(CommandList)  # none yet, or none left as the palette closes

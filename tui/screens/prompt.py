@@ -55,7 +55,7 @@ class _Input(Input):
 
     def action_end(self, select: bool = False) -> None:
         super().action_end(select)
-        if not select and self._suggestion:  # private: Textual is pinned to 8.x
+        if not select:  # at the end, → takes the suggestion if there is one, else stays
             self.action_cursor_right()
 
 

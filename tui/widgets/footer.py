@@ -14,7 +14,8 @@ from typing import Iterable, Sequence
 from textual.events import Resize
 from textual.widget import Widget
 from textual.widgets import Footer
-from textual.widgets._footer import FooterKey, FooterLabel, KeyGroup  # not exported by 8.x
+
+from biceps.tui.textual_private import footer_parts
 
 
 class FittedFooter(Footer):
@@ -49,7 +50,10 @@ class FittedFooter(Footer):
 
     def _fit(self) -> None:
         """Keep the keys of most worth that fit beside the docked ones (the palette's key),
-        each as wide as it was laid out, all of them shown."""
+        each as wide as it was laid out, all of them shown. (On the public path, Textual's
+        footer as it is: its pieces are not exported.)"""
+        if footer_parts() is None:
+            return
         units = self._units()
         if any(not widget.region for unit in units for widget in unit):
             self.call_after_refresh(self._fit)  # not laid out yet
@@ -70,11 +74,12 @@ class FittedFooter(Footer):
     def _units(self) -> list[list[Widget]]:
         """The keys that go or stay together: a group of keys and its label, or the keys of
         one action (c and x, contract and stretch, both change the length)."""
+        _, label, _ = footer_parts()
         units: list[list[Widget]] = []
         for child in self.children:
             if child.styles.dock != "none":
                 continue
-            if units and (isinstance(child, FooterLabel)
+            if units and (isinstance(child, label)
                           or _action(child) and _action(child) == _action(units[-1][-1])):
                 units[-1].append(child)
             else:
@@ -95,6 +100,7 @@ def _width(widget: Widget) -> int:
 
 def _action(widget: Widget) -> str:
     """The name of the action of a footer's key, or of a group's first key; else ''."""
-    if isinstance(widget, KeyGroup):  # (its keys may not be mounted yet)
-        widget = next(iter(widget.query(FooterKey)), None)
-    return widget.action.split("(", 1)[0] if isinstance(widget, FooterKey) else ""
+    key, _, group = footer_parts()
+    if isinstance(widget, group):  # (its keys may not be mounted yet)
+        widget = next(iter(widget.query(key)), None)
+    return widget.action.split("(", 1)[0] if isinstance(widget, key) else ""

@@ -44,7 +44,6 @@ from rich.segment import Segment
 from rich.style import Style
 from textual import events, work
 from textual.filter import ANSIToTruecolor, LineFilter
-from textual._compositor import ChopsUpdate, CompositorUpdate, LayoutUpdate
 from textual.geometry import Region, Size
 from textual.message import Message
 from textual.strip import Strip
@@ -59,7 +58,8 @@ from biceps.tui.halfblocks import HalfBlocks, TextCells
 from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer
 from biceps.tui.pixels import ImageEncoder
-from biceps.tui.prerendered import PrerenderedStrip, console_system
+from biceps.tui import textual_private as private
+from biceps.tui.prerendered import console_system
 from biceps.tui.palette import Palette256, background_colour
 from biceps.tui.palette import colour as palette_colour
 
@@ -222,21 +222,13 @@ class Viewport(Widget, can_focus=True):
             self._image_on_screen = False
             self._write(self._encoder.clear())
 
-    def repainted(self, update: CompositorUpdate) -> None:
+    def repainted(self, update: object) -> None:
         """Textual has written ``update`` to the terminal: if it wrote over the picture's
         cells, the image painted there is gone, and is written again."""
         if (not self._latest_image or self._image or not self._on_top
                 or self._latest_size != self.size):
             return  # (a frame's image is written once its lines are; one of another size not)
-        area = self.content_region
-        if isinstance(update, LayoutUpdate):
-            touched = update.region.overlaps(area)
-        elif isinstance(update, ChopsUpdate):
-            touched = any(area.y <= y < area.bottom and x1 < area.right and x2 >= area.x
-                          for y, x1, x2 in update.spans)
-        else:
-            touched = True
-        if touched:
+        if private.update_touches(update, self.content_region):
             self._write_image(self._latest_image)
 
     def _request_frame(self) -> None:
@@ -332,14 +324,13 @@ class Viewport(Widget, can_focus=True):
         or, if anything else is drawn over the widget (or it is not lines of cells at its
         size, framed in the border's sides alone), leave them to Textual. Whether it
         wrote them."""
-        # Textual would take 1.5 ms of the UI thread a frame (at 200x60) to find what a
-        # frame changed, styling every widget on the screen, when the encoder has said
-        # which lines changed and the viewport has framed them already. Private
-        # attributes: Textual is pinned to 8.x.
+        # Textual would find what a frame changed by styling every widget on the screen,
+        # when the encoder has said which lines changed and the viewport has framed them
+        # already. Only on the private path (tui/textual_private.py).
         app = self.app
-        if (self._image or app._batch_count or app.is_inline or app._driver is None
+        if (self._image or private.batching(app) or app.is_inline or not private.can_write(app)
                 or not self._on_top or self._latest_size != self.size
-                or not self._in_full_view()):
+                or not private.uncovered(self)):
             return False
         sides = self._sides()
         if sides is None:
@@ -362,32 +353,18 @@ class Viewport(Widget, can_focus=True):
             ]))
         return True
 
-    def _in_full_view(self) -> bool:
-        """Whether all of the widget is on screen, with no other widget over any of it."""
-        region = self.region
-        if not self.app.size.region.contains_region(region):
-            return False  # the terminal shrank, and Textual has yet to lay the screen out
-        # Front to back: the widgets after this one (its containers) are behind it.
-        for widget, (place, clip) in self.screen._compositor.visible_widgets.items():
-            if widget is self:
-                return clip.contains_region(region)
-            if place.intersection(clip).overlaps(region):
-                return False
-        return False  # not on screen at all
-
     def _when_drawn(self, tries: int) -> None:
         # Once Textual has written this frame, the pacer says when the next may be made.
         # "After refresh" callbacks can run before the refresh that draws the new lines
         # (the screen runs them without painting during a batch update, for one); asking
-        # the terminal then would time the wrong write. Textual empties a widget's repaint
-        # regions in the very call that writes them out (Compositor.update_widgets, then
-        # App._display), so while some remain the frame is not out yet. A private
-        # attribute: Textual is pinned to 8.x. A hidden viewport is never drawn, hence the
-        # limit.
-        if self._repaint_regions and tries > 1:
+        # the terminal then would time the wrong write: while Textual has regions of the
+        # widget to repaint, the frame is not out yet. A hidden viewport is never drawn,
+        # hence the limit.
+        pending = private.repaint_pending(self)
+        if pending and tries > 1:
             self.call_after_refresh(self._when_drawn, tries - 1)
             return
-        if self._image and not self._repaint_regions:
+        if self._image and not pending:
             # Over its lines once they are out (never over another screen), and before the
             # pacer's question, so that the answer waits for the image too.
             if self._on_top and self._latest_size == self.size:
@@ -408,16 +385,11 @@ class Viewport(Widget, can_focus=True):
 
     def _write_synchronized(self, text: str) -> None:
         """Write ``text`` to be shown all at once, where the terminal can."""
-        if self.app._sync_available:  # (private: Textual is pinned to 8.x)
-            text = f"\x1b[?2026h{text}\x1b[?2026l"
-        self._write(text)
+        self._write(private.synchronized(self.app, text))
 
     def _write(self, text: str) -> None:
-        # Straight to the driver, after the lines already queued there (as App.bell does).
-        # A private attribute: Textual is pinned to 8.x.
-        driver = self.app._driver
-        if text and driver is not None:
-            driver.write(text)
+        # Straight to the terminal, after the lines already queued there.
+        private.write(self.app, text)
 
     def on_viewport_render_failed(self, message: RenderFailed) -> None:
         self._requests.done()
@@ -453,10 +425,8 @@ class Viewport(Widget, can_focus=True):
             # Setting a border title repaints the whole widget, picture and all, though
             # only its own row changes.
             row, written = self._captioning
-            if written:
-                # Written with the frame: the row need only be styled again. (A private
-                # attribute: Textual is pinned to 8.x.)
-                self._styles_cache.set_dirty(row.translate(self.content_offset))
+            # Written with the frame: the row need only be styled again.
+            if written and private.restyle(self, row.translate(self.content_offset)):
                 return self
             regions = (row,)
         return super().refresh(*regions, **options)
@@ -482,7 +452,7 @@ class Viewport(Widget, can_focus=True):
         # and any other styling are Textual's own.
         top, (width, height) = self.styles.gutter.top, self.size
         first, last = max(crop.y, top), min(crop.bottom, top + height)
-        sides = self._sides() if first < last else None
+        sides = self._sides() if first < last and private.ENABLED else None
         if sides is None:
             return super().render_lines(crop)
         console = self.app.console
@@ -499,16 +469,14 @@ class Viewport(Widget, can_focus=True):
         """Rows ``first`` up to ``last`` of the widget, whole, as Textual styles them."""
         # The compositor asks for every row of the widget at each frame, and Textual
         # answers each call with work of its own (the background's colours, the captions'
-        # styles) before it finds a row in its cache: 0.05 to 0.1 ms a call. A row
-        # it would take from its cache is taken from there here. Private attributes:
-        # Textual is pinned to 8.x.
+        # styles) before it finds a row in its cache: a row it would take from its cache
+        # is taken from there here, on the private path.
         if first >= last:
             return []
-        cache, rows, width = self._styles_cache, range(first, last), self.outer_size.width
-        if cache._width == width and all(y in cache._cache and not cache.is_dirty(y)
-                                         for y in rows):
-            return [cache._cache[y] for y in rows]
-        return super().render_lines(Region(0, first, width, last - first))
+        cached = private.styled_lines(self, first, last)
+        if cached is not None:
+            return cached
+        return super().render_lines(Region(0, first, self.outer_size.width, last - first))
 
     def _sides(self) -> tuple[Strip, Strip] | None:
         """What Textual draws left and right of a line of the picture, if the rest of its
@@ -534,12 +502,7 @@ class Viewport(Widget, can_focus=True):
         cached = self._framed_lines.get(y)
         if cached is not None and cached[0] is line and cached[1] == sides:
             return cached[2]
-        left, right = sides
-        if isinstance(line, PrerenderedStrip):
-            framed = line.framed(left, right, console)
-        else:
-            framed = Strip([*left, *line, *right],
-                           left.cell_length + line.cell_length + right.cell_length)
+        framed = private.framed(line, *sides, console)
         self._framed_lines[y] = (line, sides, framed)
         return framed
 
