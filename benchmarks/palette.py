@@ -6,7 +6,7 @@ picture, and how fast frames are mapped onto the palette, against another checko
 For each model, size and view: the mean OKLab difference over the arm after a 2 x 2 box
 blur of both pictures, and the share of the red belly's pixels more than 25 degrees of
 OKLab hue away from the 24-bit picture's (tests/colours.py; the issue's acceptance: at most
-0.025 and 2 %). The pictures are made by each interpreter's ``biceps.tui.palette`` (its
+0.025 and 2 %). The pictures are made by each interpreter's ``biceps.terminal.palette`` (its
 ``Palette256().mapped``, what the app and ``snapshot --ansi`` use) and measured here. Then
 the time to map one frame of the app at 200x60 cells (200x120 pixels), the first (with
 nothing chosen yet) and the median of the next 50 as a model turns, in each interpreter in
@@ -39,7 +39,7 @@ import numpy as np
 from biceps.configs import FOLDER
 from biceps.engine.config import load_config, rgb
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui.palette import Palette256
+from biceps.terminal.palette import Palette256
 
 configs, sizes, views, out = *map(json.loads, sys.argv[1:4]), sys.argv[4]
 pictures = {}

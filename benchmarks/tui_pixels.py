@@ -7,7 +7,7 @@ and like a sixel terminal, beside half-blocks measured in the same run.
 The machinery is ``tui_pty.py``'s: the same key held at 30 presses a second (typematic:
 key-to-picture latency) and at 120 (flood: frames per second, bytes per frame, CPU), the
 same emulated slow links (lag from the last key to its picture). This terminal also
-answers the app's questions at start (``tui/detect.py``) as the terminal it plays would,
+answers the app's questions at start (``terminal/detect.py``) as the terminal it plays would,
 with cells of ``--cell`` pixels, and counts a frame when an image ends (the cursor
 restored after it), taking its yaw from the last caption written before it.
 
@@ -45,7 +45,7 @@ from tui_pty import (  # noqa: E402
 
 DEVICE_ATTRIBUTES_QUERY = b"\x1b[c"
 RESTORE_CURSOR = b"\x1b8"
-IMAGE_STARTS = (b"\x1b_Ga=T", b"\x1bP0;1;0q")  # kitty, sixel (as tui/kitty.py, tui/sixel.py)
+IMAGE_STARTS = (b"\x1b_Ga=T", b"\x1bP0;1;0q")  # kitty, sixel (as terminal/kitty.py, terminal/sixel.py)
 
 
 def answers(graphics: str, cell: tuple[int, int]) -> bytes:

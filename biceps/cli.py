@@ -374,7 +374,7 @@ def _check_terminal() -> None:
 @_refusals_exit_2
 def doctor(graphics: str, colors: str) -> None:
     """Ask this terminal what it can show, and say what the app would use and why."""
-    from biceps.tui import choose, detect
+    from biceps.terminal import choose, detect
 
     from biceps.tui.textual_private import describe
 
@@ -709,8 +709,8 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
         prepare_kernels(scene.render.shading, supersampling(scene.render, height))
     if printed == "ansi":
         from biceps.engine.config import rgb
-        from biceps.tui import choose, detect
-        from biceps.tui.ansi import print_picture
+        from biceps.terminal import choose, detect
+        from biceps.terminal.ansi import print_picture
 
         answers = detect.ask() if colors == "auto" and sys.stdout.isatty() else None
         asked = scene.render.colors if colors == "auto" else colors
@@ -720,7 +720,7 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
                           rgb(scene.render.background), size, system)
         return
     if printed is not None:
-        from biceps.tui.printed import print_image
+        from biceps.terminal.printed import print_image
 
         with _stdout():
             print_image(printed,

@@ -28,13 +28,13 @@ SHADINGS = (*get_args(Shading), "overdraw")
 that counts the triangles on each pixel, which a file cannot name and so cannot be saved."""
 
 Graphics = Literal["halfblocks", "auto", "kitty", "sixel", "iterm", "sextants", "quadrants"]
-"""How the picture reaches the terminal (``tui/choose.py``): half-block characters, which
+"""How the picture reaches the terminal (``terminal/choose.py``): half-block characters, which
 every terminal shows; one of the protocols for real pixels; finer text cells, sextants or
 quadrants; or ``auto``, the best the terminal answers that it has."""
 
 Colors = Literal["auto", "truecolor", "256"]
 """The colours the picture goes out in: 24-bit, xterm's 256, or ``auto``, what the terminal
-answers that it keeps (``tui/choose.py``)."""
+answers that it keeps (``terminal/choose.py``)."""
 
 ColourBy = Literal["muscle", "strain", "activation"]
 """What colours each muscle's belly: its own colour, how far it is from its rest length, or

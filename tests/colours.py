@@ -1,12 +1,12 @@
 """How far a picture in few colours is from the 24-bit one, as the eye sees it: OKLab
 differences after a blur that averages a dither out, and the share of a coloured area shown
-in other hues (``tui/palette.py``; ``benchmarks/palette.py`` prints both)."""
+in other hues (``terminal/palette.py``; ``benchmarks/palette.py`` prints both)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from biceps.tui.palette import oklab
+from biceps.terminal.palette import oklab
 
 BELLY_CHROMA = 0.08  # OKLab chroma from which a pixel of the muscle is clearly coloured
 BELLY_HUE = 30.0  # degrees either side of the muscle colour's hue that are its shading's

@@ -55,9 +55,9 @@ def pieces(frame: np.ndarray, background: tuple[int, int, int]) -> int:
 
 
 def cell_pixels(shape, cells: np.ndarray) -> np.ndarray:
-    """The pixels that text cells of ``shape`` (tui/cells.py) show, each in its cell's
+    """The pixels that text cells of ``shape`` (terminal/cells.py) show, each in its cell's
     foreground or background colour: (rows h, columns w, 3) uint8 for (h, w) cells."""
-    from biceps.tui.cells import unpacked
+    from biceps.terminal.cells import unpacked
 
     height, width = cells.shape
     pixels = np.zeros((height * shape.rows, width * shape.columns, 3), np.uint8)

@@ -88,7 +88,7 @@ def _read_until_picture(master: int, output: bytearray, deadline: float) -> None
         if select.select([master], [], [], 0.05)[0]:
             asked = output.count(DEVICE_ATTRIBUTES_QUERY)
             output += os.read(master, 1 << 16)
-            # The app asks what the terminal can show (tui/detect.py), in rounds that end
+            # The app asks what the terminal can show (terminal/detect.py), in rounds that end
             # with the device attributes: a VT220's answer to each.
             os.write(master, DEVICE_ATTRIBUTES_ANSWER
                      * (output.count(DEVICE_ATTRIBUTES_QUERY) - asked))

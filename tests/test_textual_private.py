@@ -16,7 +16,7 @@ from biceps.tui import textual_private
 
 ROOT = Path(__file__).resolve().parents[1]
 SEAM = ROOT / "tui" / "textual_private.py"
-SOURCES = sorted(path for folder in ("biceps", "engine", "tui")
+SOURCES = sorted(path for folder in ("biceps", "engine", "terminal", "tui")
                  for path in (ROOT / folder).rglob("*.py") if path != SEAM)
 
 # Private attributes of Textual's objects, by name: what the app used before it had the seam

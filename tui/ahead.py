@@ -31,7 +31,7 @@ from biceps.engine import coldstart
 from biceps.engine.config import Config
 from biceps.engine.scene import supersampling
 from biceps.tui.encoder import PictureEncoder
-from biceps.tui.palette import Palette256
+from biceps.terminal.palette import Palette256
 from biceps.tui.sgr import lean, minimized
 
 _minimizer_ready = threading.Event()

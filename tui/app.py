@@ -42,8 +42,8 @@ from biceps.engine.hold import Effort, effort
 from biceps.engine.names import printable
 from biceps.engine.scene import Scene, SceneRenderer, supersampling
 from biceps.engine.settings import ColourBy
-from biceps.tui import detect
-from biceps.tui.choose import TEXT, choose, colours, notice
+from biceps.terminal import detect
+from biceps.terminal.choose import TEXT, choose, colours, notice
 from biceps.tui.ahead import compile_ahead, lean_once_ready
 from biceps.tui.behind import Backlog, outdated
 from biceps.tui.flow_control import no_flow_control
@@ -196,7 +196,7 @@ class BicepsApp(AppHooks):
         """``fps``: the most frames a second the picture is redrawn at, up to Textual's
         limit (``TEXTUAL_FPS``, 60 unless set), the cap if None; ``encoder``: how the
         picture reaches the terminal (default: half-blocks); ``notice``: said once the app
-        is up (what the terminal could show, see tui/choose.py). ``rescue``: start on the
+        is up (what the terminal could show, see terminal/choose.py). ``rescue``: start on the
         model an app left when it ended on an error, and offer to save it."""
         super().__init__()
         # Textual paints no more often than its limit, but the viewport writes most frames

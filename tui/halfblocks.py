@@ -1,14 +1,14 @@
-"""Pictures as terminal lines of text cells (``tui/cells.py``): half-blocks, two pixels a
+"""Pictures as terminal lines of text cells (``terminal/cells.py``): half-blocks, two pixels a
 cell, one above the other (the viewport's default, in every font), or the finer quadrants
 and sextants. The :class:`~tui.encoder.PictureEncoder` of text.
 
 The cells are fitted to the frame, and the rows that changed since the last frame found and
-written, by kernels (``tui/cells.py``), each changed line's terminal text as Textual would
+written, by kernels (``terminal/cells.py``), each changed line's terminal text as Textual would
 write its segments (``tui/prerendered.py``). A line makes its segments, with one cached
 :class:`~rich.style.Style` per cell, only if Textual asks for them (to crop it under a
 dialog, say). Textual composes the lines with whatever is drawn over the picture and writes
 their text. For a 256-colour terminal the frames come already mapped onto the palette
-(``tui/palette.py``), each colour is written as its palette entry, and the lines' text is
+(``terminal/palette.py``), each colour is written as its palette entry, and the lines' text is
 made from codes cached per cell.
 """
 
@@ -24,7 +24,7 @@ from rich.style import Style
 from textual.geometry import Size
 from textual.strip import Strip
 
-from biceps.tui.cells import HALF_BLOCKS, CellRows, Shape, runs, unpacked
+from biceps.terminal.cells import HALF_BLOCKS, CellRows, Shape, runs, unpacked
 from biceps.tui.encoder import Picture
 from biceps.tui.prerendered import RESET, codes
 from biceps.tui.textual_private import text_strip

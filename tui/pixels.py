@@ -1,6 +1,6 @@
 """The encoders of real pixels: the kitty graphics protocol, sixel and iTerm2 images, each
-sending the whole frame as one image (the protocols themselves are ``tui/kitty.py``,
-``tui/sixel.py`` and ``tui/iterm.py``).
+sending the whole frame as one image (the protocols themselves are ``terminal/kitty.py``,
+``terminal/sixel.py`` and ``terminal/iterm.py``).
 
 The image is drawn from the picture's top-left cell over ``columns x rows`` cells. The
 lines under it are blank and are written only when the picture's size changes, so a new
@@ -28,9 +28,9 @@ from rich.style import Style
 from textual.geometry import Size
 from textual.strip import Strip
 
-from biceps.tui import iterm, kitty, sixel
-from biceps.tui.cells import SHAPES
-from biceps.tui.choose import Choice
+from biceps.terminal import iterm, kitty, sixel
+from biceps.terminal.cells import SHAPES
+from biceps.terminal.choose import Choice
 from biceps.tui.encoder import Picture, PictureEncoder
 from biceps.tui.halfblocks import HalfBlocks, TextCells
 

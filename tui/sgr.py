@@ -25,7 +25,7 @@ from textual.driver import Driver
 from textual.strip import SGR_STYLES
 
 from biceps.engine.jit import helper, ngjit
-from biceps.tui.writing import BASIC, PALETTE, RGB, put_colour, put_number
+from biceps.terminal.writing import BASIC, PALETTE, RGB, put_colour, put_number
 
 ESC, BEL, LF, CR = 0x1B, 0x07, 0x0A, 0x0D
 

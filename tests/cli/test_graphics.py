@@ -16,8 +16,8 @@ from PIL import Image
 from biceps.cli import main
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui import detect, printed
-from biceps.tui.cells import SEXTANTS
+from biceps.terminal import detect, printed
+from biceps.terminal.cells import SEXTANTS
 from biceps.tui.halfblocks import HalfBlocks, TextCells
 from biceps.tui.pixels import KittyGraphics, Sixel
 

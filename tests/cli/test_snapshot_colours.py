@@ -9,7 +9,7 @@ from click.testing import CliRunner
 
 from biceps.cli import main
 from biceps.engine.config import DEFAULT_CONFIG, load_config, rgb
-from biceps.tui.palette import oklab
+from biceps.terminal.palette import oklab
 from colours import blurred_difference, off_hue_share
 from vt import Screen
 

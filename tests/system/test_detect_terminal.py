@@ -15,7 +15,7 @@ import time
 
 ASK = """
 import termios
-from biceps.tui.detect import ask
+from biceps.terminal.detect import ask
 answers = ask()
 mode = termios.tcgetattr(0)[3]
 print("answers", answers.answered, answers.kitty, answers.name, answers.cell, answers.sixel)

@@ -16,6 +16,7 @@ import pytest
 from PIL import Image
 
 import biceps.engine
+import biceps.terminal
 from biceps.engine.config import DEFAULT_CONFIG
 from pty_app import first_picture
 
@@ -63,14 +64,18 @@ TERMINAL_PROTOCOLS = ["detect", "choose", "palette", "cells", "writing", "kitty"
                       "iterm", "ansi", "printed"]
 
 
-def test_the_terminal_protocols_import_no_textual():
-    # The questions, the choices, the palettes, the encoders and their byte writers, which
-    # a layer of their own is to take (issue 24): the app's Textual stays out of them.
+def test_the_terminal_layer_imports_no_textual_nor_the_app():
+    # The questions, the choices, the palettes, the encoders and their byte writers: the
+    # app's Textual stays out of them.
+    modules = [info.name for info in pkgutil.walk_packages(biceps.terminal.__path__,
+                                                           "biceps.terminal.")]
+    assert sorted(name.rsplit(".", 1)[1] for name in modules) == sorted(TERMINAL_PROTOCOLS)
     process = _python(f"""
         import importlib, sys
-        for name in {TERMINAL_PROTOCOLS!r}:
-            importlib.import_module("biceps.tui." + name)
-        print(sorted(m for m in sys.modules if m.split('.')[0] == 'textual'))
+        for name in {modules!r}:
+            importlib.import_module(name)
+        print(sorted(m for m in sys.modules if m.split('.')[0] == 'textual'
+                     or m.startswith('biceps.tui')))
     """)
     assert process.returncode == 0, process.stderr
     assert process.stdout.strip() == "[]"
@@ -99,10 +104,10 @@ def test_snapshot_runs_without_importing_textual_or_rich(tmp_path):
 
 
 @pytest.mark.parametrize("printed", ["--ansi", "--kitty", "--sixel", "--iterm"])
-def test_snapshot_printed_to_a_terminal_imports_no_textual(printed):
+def test_snapshot_printed_to_a_terminal_imports_no_textual_nor_the_app(printed):
     # (its output, into the pipe, ends up in the test's output: a small picture)
     argv = ["snapshot", str(DEFAULT_CONFIG), printed, "--size", "16x10"]
-    assert _imported_after(argv, "textual") == []
+    assert _imported_after(argv, "textual", "biceps.tui") == []
 
 
 def test_animate_runs_without_importing_textual_or_rich(tmp_path):
@@ -185,13 +190,14 @@ def test_a_wheel_installs_one_biceps_package_and_the_bundled_models(installed):
 import importlib.util, pathlib, biceps, biceps.configs
 print(pathlib.Path(biceps.__file__).parent.parent)
 print(biceps.configs.DEFAULT)
-print([n for n in ("engine", "tui", "configs") if importlib.util.find_spec(n)])
+print([n for n in ("engine", "tui", "terminal", "configs") if importlib.util.find_spec(n)])
 """], capture_output=True, text=True, cwd=installed, timeout=60)
     assert process.returncode == 0, process.stderr
     site, default, tops = process.stdout.splitlines()
     assert default.startswith(site) and Path(default).is_file()
     assert tops == "[]"
-    assert not any(Path(site, name).exists() for name in ("engine", "tui", "configs"))
+    assert not any(Path(site, name).exists()
+                   for name in ("engine", "tui", "terminal", "configs"))
 
 
 def test_the_installed_command_runs_on_the_bundled_model_from_anywhere(installed, tmp_path):
@@ -204,6 +210,9 @@ def test_the_installed_command_runs_on_the_bundled_model_from_anywhere(installed
     assert '"nodes": 15' in info.stdout
     shot = biceps("snapshot", "-o", "arm.png", "--size", "160x90")
     assert shot.returncode == 0, shot.stderr
+    printed = biceps("snapshot", "--ansi", "--size", "16x10")  # the terminal layer, installed
+    assert printed.returncode == 0, printed.stderr
+    assert printed.stdout.count("\u2580") + printed.stdout.count("\u2584") > 0
     assert Image.open(tmp_path / "arm.png").size == (160, 90)
     assert np.asarray(Image.open(tmp_path / "arm.png")).std() > 0  # a picture, not a blank
     mesh = biceps("export-mesh", "-o", "arm.obj")

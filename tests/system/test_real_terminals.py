@@ -40,8 +40,8 @@ from PIL import Image
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config, rgb
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui.cells import SHAPES, CellRows
-from biceps.tui.palette import Palette256
+from biceps.terminal.cells import SHAPES, CellRows
+from biceps.terminal.palette import Palette256
 from pictures import cell_pixels
 
 ROOT = Path(__file__).resolve().parents[2]

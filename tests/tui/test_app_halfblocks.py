@@ -9,7 +9,7 @@ from rich.console import Console
 from textual.strip import Strip
 
 from biceps.tui.halfblocks import HalfBlocks
-from biceps.tui.cells import HALF_BLOCKS
+from biceps.terminal.cells import HALF_BLOCKS
 
 UPPER_HALF = HALF_BLOCKS.glyphs[1]
 

@@ -12,7 +12,7 @@ from rich.color import Color, ColorSystem, ColorType
 
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui.palette import COLOURS, FIRST, Palette256, colour, nearest, oklab
+from biceps.terminal.palette import COLOURS, FIRST, Palette256, colour, nearest, oklab
 from biceps.tui.widgets.viewport import Viewport
 from colours import blurred_difference, off_hue_share
 from pictures import shown_cells

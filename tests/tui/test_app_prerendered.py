@@ -11,8 +11,8 @@ from textual.strip import Strip
 from textual.widget import Widget
 
 from biceps.tui.halfblocks import HalfBlocks
-from biceps.tui.palette import Palette256
-from biceps.tui.palette import colour as palette_colour
+from biceps.terminal.palette import Palette256
+from biceps.terminal.palette import colour as palette_colour
 from biceps.tui.textual_private import PrerenderedStrip, framed
 from biceps.tui.widgets.viewport import Viewport
 

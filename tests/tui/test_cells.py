@@ -9,7 +9,7 @@ import pytest
 from rich.console import Console
 from textual.strip import Strip
 
-from biceps.tui.cells import HALF_BLOCKS, QUADRANTS, SEXTANTS, CellRows, unpacked
+from biceps.terminal.cells import HALF_BLOCKS, QUADRANTS, SEXTANTS, CellRows, unpacked
 from biceps.tui.halfblocks import TextCells
 from pictures import cell_pixels
 

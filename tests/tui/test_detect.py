@@ -8,10 +8,10 @@ from __future__ import annotations
 import pytest
 from textual.geometry import Size
 
-from biceps.tui import detect
-from biceps.tui.cells import SEXTANTS
-from biceps.tui.choose import choose, colours, hint, notice, report
-from biceps.tui.detect import Answers, Place, parse
+from biceps.terminal import detect
+from biceps.terminal.cells import SEXTANTS
+from biceps.terminal.choose import choose, colours, hint, notice, report
+from biceps.terminal.detect import Answers, Place, parse
 from biceps.tui.halfblocks import HalfBlocks, TextCells
 from biceps.tui.pixels import ItermImages, KittyGraphics, KittyPlaceholders, Sixel, encoder_for
 

@@ -20,9 +20,9 @@ from textual.geometry import Size
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.scene import Scene, SceneRenderer
-from biceps.tui import kitty
+from biceps.terminal import kitty
 from biceps.tui.pixels import ItermImages, KittyGraphics, KittyPlaceholders, Sixel
-from biceps.tui.sixel import quantised, sixel_image
+from biceps.terminal.sixel import quantised, sixel_image
 from colours import blurred_difference
 
 CELL = Size(10, 20)

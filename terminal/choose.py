@@ -1,9 +1,9 @@
-"""What the app makes of the terminal's answers (``tui/detect.py``): how the picture reaches
+"""What the app makes of the terminal's answers (``terminal/detect.py``): how the picture reaches
 the terminal and in which colours, each with the reason; and what ``biceps doctor`` prints.
 
 Graphics (:func:`choose`): real pixels where the terminal has a protocol for them (kitty's
 graphics, iTerm2's images, sixel within the size and colours the terminal allows), else text
-cells (``tui/cells.py``): sextants where the terminal draws block characters itself
+cells (``terminal/cells.py``): sextants where the terminal draws block characters itself
 (whatever its font: kitty, WezTerm, foot, Ghostty, VTE's terminals, Windows Terminal), else
 half-blocks, which every font has. Inside tmux, sixel where tmux draws it itself (3.4 built
 with sixel); kitty's images through tmux's passthrough where they can be placed by Unicode
@@ -27,7 +27,7 @@ import shutil
 from dataclasses import dataclass, field
 from typing import Mapping
 
-from biceps.tui.detect import ANSWER_TIME, VTE, Answers, Place
+from biceps.terminal.detect import ANSWER_TIME, VTE, Answers, Place
 
 DEFAULT_CELL = (10, 20)  # pixels, when the terminal does not say
 PLACEHOLDERS_SINCE = (0, 28)  # the kitty whose Unicode placeholders place images inside tmux

@@ -25,7 +25,7 @@ Choosing a pair looks at every entry, so each choice is kept in a table of colou
 :data:`TABLE_BITS` bits a channel, filled as colours are met; the share of the second entry
 is worked out for each pixel from its exact colour. The background is kept one flat colour,
 its nearest entry, with nothing mixed into it. Sixel images with few colour registers are
-mapped the same way onto their own palette (``tui/sixel.py``). Free of Textual.
+mapped the same way onto their own palette (``terminal/sixel.py``). Free of Textual.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""What the terminal can show, asked before the app takes the screen (``tui/choose.py`` makes
+"""What the terminal can show, asked before the app takes the screen (``terminal/choose.py`` makes
 the choices from the answers).
 
 :func:`ask` writes questions to the terminal and reads the answers, in two rounds:

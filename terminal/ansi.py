@@ -1,11 +1,11 @@
 """Printing a picture to the terminal as half-block cells, two pixels a cell
-(``tui/cells.py``): ``biceps snapshot --ansi``.
+(``terminal/cells.py``): ``biceps snapshot --ansi``.
 
 The colour codes are written even when the output is not a terminal
 (``--ansi`` asks for them: ``| less -R``, ``> arm.ans``), in 24 bits or the 256 colours, as
-``colors`` says or the terminal answers (``tui/detect.py``), never fewer: a picture in 16
+``colors`` says or the terminal answers (``terminal/detect.py``), never fewer: a picture in 16
 colours is no picture. In 256 colours the frame is first mapped onto the palette as a
-whole, as the app does (``tui/palette.py``), and each colour written as its entry. Free of
+whole, as the app does (``terminal/palette.py``), and each colour written as its entry. Free of
 Textual.
 """
 
@@ -17,8 +17,8 @@ from typing import Callable
 
 import numpy as np
 
-from biceps.tui.cells import HALF_BLOCKS, CellRows, palette_text
-from biceps.tui.palette import Palette256, entry_numbers
+from biceps.terminal.cells import HALF_BLOCKS, CellRows, palette_text
+from biceps.terminal.palette import Palette256, entry_numbers
 
 
 def print_picture(render: Callable[[int, int], np.ndarray], background: tuple[int, int, int],

@@ -1,6 +1,6 @@
 """Terminal codes written into byte buffers, by kernels: numbers in decimal, and colours as
 SGR parameters. Shared by the output minimizer (``tui/sgr.py``), the text cells
-(``tui/cells.py``) and sixel (``tui/sixel.py``); free of Textual.
+(``terminal/cells.py``) and sixel (``terminal/sixel.py``); free of Textual.
 """
 
 from __future__ import annotations

@@ -17,7 +17,7 @@ Three shapes of cell (:data:`SHAPES`):
 A cell of more than two pixels is shown in two colours, so each cell's pixels are split in
 two groups (2-means: around the two pixels that differ most, then again around the groups'
 means), each shown in its mean colour; or, for a frame already in a palette's colours (a
-256-colour terminal's, ``tui/palette.py``), in the colour of one of its pixels, so that the
+256-colour terminal's, ``terminal/palette.py``), in the colour of one of its pixels, so that the
 cell stays in the palette. A 2 x 2 dither of two entries fills its cell exactly.
 
 A cell is one number, ``foreground << 29 | background << 5 | pattern`` (each colour ``r <<
@@ -29,7 +29,7 @@ fit the cells, find the rows that differ from the last frame and the runs of equ
 them, and write each changed row's terminal text in 24-bit colour, each run as Textual
 writes a segment: ``CSI`` foreground ``;`` background ``m``, the characters, ``CSI 0 m``.
 Free of Textual: the viewport's encoder (``tui/halfblocks.py``) and ``snapshot --ansi``
-(``tui/ansi.py``) build on it.
+(``terminal/ansi.py``) build on it.
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from biceps.engine.jit import helper, ngjit
-from biceps.tui.writing import RGB, put_colour
+from biceps.terminal.writing import RGB, put_colour
 
 FOREGROUND, BACKGROUND = 29, 5  # where each colour starts in a cell's number
 PATTERN = (1 << BACKGROUND) - 1

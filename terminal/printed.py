@@ -1,9 +1,9 @@
 """Printing one picture to the terminal in real pixels: ``biceps snapshot --kitty``,
-``--sixel`` and ``--iterm``, as ``--ansi`` prints text cells (``tui/ansi.py``).
+``--sixel`` and ``--iterm``, as ``--ansi`` prints text cells (``terminal/ansi.py``).
 
 The picture fits the window: as wide as the terminal at 16:9, or, where that would be taller
 than the window (less a line for the prompt after it), as tall as the window, in whole cells
-of the size the terminal says (``tui/detect.py``; 10x20 pixels if it does not). A sixel
+of the size the terminal says (``terminal/detect.py``; 10x20 pixels if it does not). A sixel
 image is kept within the size the terminal takes (xterm's 1000x1000 pixels unless told
 more). Room is made first (as many new lines as the picture has rows), so that the image
 never scrolls the screen as it is drawn, and the cursor ends below it, as after any output.
@@ -22,7 +22,7 @@ from typing import Callable
 import numpy as np
 
 from biceps.engine.errors import BicepsError
-from biceps.tui import choose, detect, iterm, kitty, sixel
+from biceps.terminal import choose, detect, iterm, kitty, sixel
 
 
 def image(protocol: str, frame: np.ndarray, columns: int, rows: int, choice: choose.Choice

@@ -10,7 +10,7 @@ as the terminal has registers (256 at most here; xterm's vt340 has 16 unless tol
 Pillow quantises the frame to that palette (its fast octree: about 6 ms for 1200x800, and
 no dithering, whose noise would cost bytes in every band, where 64 registers or more leave
 no bands to see; with fewer, as xterm's vt340 has unless told more, the frame is dithered
-onto the octree's colours, choosing them as the eye sees them, ``tui/palette.py``); a numba
+onto the octree's colours, choosing them as the eye sees them, ``terminal/palette.py``); a numba
 kernel writes the bands.
 textual-image's pure-Python encoder took about 50 ms for the same frame (measured with
 version 0.12: too slow for 30 frames a second with the frame still to be drawn). (The
@@ -23,8 +23,8 @@ import numpy as np
 from PIL import Image
 
 from biceps.engine.jit import helper, ngjit
-from biceps.tui.palette import Ditherer
-from biceps.tui.writing import put_number
+from biceps.terminal.palette import Ditherer
+from biceps.terminal.writing import put_number
 
 MAX_COLOURS = 256
 FEW_COLOURS = 64  # registers below which a picture is dithered onto them
@@ -99,7 +99,7 @@ def encode_bands(indices, colours, out, length, lows, highs, bits):
 def quantised(frame: np.ndarray, colours: int) -> tuple[np.ndarray, np.ndarray]:
     """``frame`` ((h, w, 3) uint8) as palette indices ((h, w) uint8) and the palette
     ((n, 3) uint8, n <= ``colours``). With fewer than :data:`FEW_COLOURS` the frame is
-    dithered onto the palette as a 256-colour terminal's picture is (``tui/palette.py``),
+    dithered onto the palette as a 256-colour terminal's picture is (``terminal/palette.py``),
     where the octree's nearest colours alone would band the shading."""
     image = Image.fromarray(np.ascontiguousarray(frame), "RGB").quantize(
         colours, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
