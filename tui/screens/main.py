@@ -7,6 +7,8 @@ room (as lazygit and btop fold their panels), and a key hides or shows it at any
 
 from __future__ import annotations
 
+from typing import Any, Sequence
+
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
@@ -20,7 +22,9 @@ from biceps.engine.hold import Effort
 from biceps.engine.scene import Scene
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.pacing import Pacer
+from biceps.tui.fields import Check, Field
 from biceps.tui.pixels import ImageEncoder
+from biceps.tui.screens.prompt import Prompt
 from biceps.tui.screens.sized import LatestSize
 from biceps.tui.widgets.footer import FittedFooter
 from biceps.tui.widgets.forces import Forces
@@ -77,6 +81,10 @@ class MainScreen(LatestSize[None]):
         self._numbers_due = False  # the numbers of a newer arm are to be shown
         self._brief = False  # the numbers shown briefly (see SHORT)
 
+    async def _ask(self, title: str, fields: Sequence[Field],
+                   check: Check) -> tuple[Any, ...] | None:
+        return await self.app.push_screen_wait(Prompt(title, fields, check=check))
+
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
             yield Viewport(self._pacer, id="viewport", encoder=self._encoder)
@@ -85,7 +93,7 @@ class MainScreen(LatestSize[None]):
                 # brief in a short panel (SHORT).
                 yield Forces(id="forces")
                 yield Stats(id="stats")
-                yield NodeTable(id="nodes")
+                yield NodeTable(self._ask, id="nodes")
         yield Plots(id="plots")
         yield Recorder(id="recorder")
         width, height = SMALLEST_USEFUL

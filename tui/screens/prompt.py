@@ -10,21 +10,18 @@ that file?): the dialog closes only once the work is done.
 from __future__ import annotations
 
 import inspect
-from dataclasses import dataclass
-from typing import Any, Awaitable, Callable, Generic, Sequence, TypeVar
+from typing import Any, Sequence
 
 from textual import on, work
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
 from textual.content import Content
-from textual.suggester import Suggester
 from textual.widgets import Button, Input, Label
 
 from biceps.engine.errors import BicepsError
+from biceps.tui.fields import Check, Field
 from biceps.tui.screens.once import Dialog
-
-T = TypeVar("T")
 
 # What a field takes: no control characters, which would reach the terminal as they are
 # when the field shows them (a paste can hold an escape sequence).
@@ -34,19 +31,6 @@ LONGEST = 4096
 """The most characters a field takes, a path's worth: a paste of 100,000 made every key
 after it cost time in proportion (Textual checks the whole text at each), 500 keys 5 s.
 A paste that would make a field longer is not taken."""
-
-Check = Callable[..., "bool | None | Awaitable[bool | None]"]
-"""Given a dialog's parsed values: raises :class:`BicepsError` to keep the dialog open with
-the message in it, returns False to keep it open without one (a question asked over it was
-declined), or anything else to close it with the values."""
-
-
-@dataclass(frozen=True)
-class Field(Generic[T]):
-    label: str
-    text: str  # what the input starts with
-    parse: Callable[[str], T]  # raises ValueError saying what is wrong
-    suggester: Suggester | None = None
 
 
 class _Input(Input):

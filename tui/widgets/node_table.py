@@ -24,7 +24,7 @@ from biceps.engine.bounds import GROWTH, NODES, RADIUS, Limits
 from biceps.engine.muscle import Muscle
 from biceps.tui.changes import with_node
 from biceps.tui.parse import parse_number
-from biceps.tui.screens.prompt import Field, Prompt
+from biceps.tui.fields import Ask, Field
 
 COLUMNS = ("#", "at cm", "r cm", "growth")
 PADDING = 1  # cells each side of a column's text
@@ -104,8 +104,10 @@ class NodeTable(ScrollView, can_focus=True):
             super().__init__()
             self.node = node
 
-    def __init__(self, *, id: str | None = None) -> None:
+    def __init__(self, ask: Ask, *, id: str | None = None) -> None:
+        """``ask`` opens the dialog that edits a node (a screen's to open)."""
         super().__init__(id=id)
+        self._ask = ask
         self._muscle: Muscle | None = None
         self._widths = tuple(len(title) for title in COLUMNS)
 
@@ -234,8 +236,7 @@ class NodeTable(ScrollView, can_focus=True):
             _number_field(f"Radius ({_range(RADIUS)})", muscle.radii[index]),
             _number_field(f"Growth ({_range(GROWTH)})", muscle.growth[index]),
         ]
-        values = await self.app.push_screen_wait(
-            Prompt(f"Node {index + 1}", fields, check=check))
+        values = await self._ask(f"Node {index + 1}", fields, check)
         if values is not None:
             radius, growth = values
             self._request(lambda current: with_node(current, index, radius, growth),
