@@ -14,6 +14,7 @@ from biceps.tui.screens.prompt import Prompt
 from biceps.tui.screens.record import RecordPrompt
 from biceps.tui.widgets.node_table import NodeTable
 from conftest import screen_rows
+from waiting import until
 
 
 def _shown_text(session, widget) -> str:
@@ -69,7 +70,7 @@ async def test_the_open_dialog_completes_a_bundled_model_s_name(biceps, tmp_path
         box = session.app.screen.query_one(Input)
         assert "elbow" in session.app.screen.query_one(".dialog-note", Label).content.plain
         box.value = "el"
-        await session.pilot.pause(0.2)  # the suggestion is found in the background
+        await until(session.pilot, lambda: box._suggestion)  # found in the background
         await session.pilot.press("end", "enter")
         await session.settle()
         assert session.app.config.path == BUNDLED / "elbow.toml"
@@ -82,7 +83,7 @@ async def test_a_file_of_that_name_comes_before_the_bundled_model(biceps, tmp_pa
         await session.pilot.press("ctrl+o")
         box = session.app.screen.query_one(Input)
         box.value = "el"
-        await session.pilot.pause(0.2)
+        await until(session.pilot, lambda: box._suggestion)
         await session.pilot.press("end")
         assert box.value == "elsewhere.toml"
 

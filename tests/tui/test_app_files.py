@@ -15,6 +15,7 @@ from biceps.tui.screens.choice import Choice
 from biceps.tui.screens.prompt import Prompt
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.engine.config import BUNDLED
+from waiting import until
 
 BROKEN = Path(__file__).resolve().parents[1] / "invalid_configs" / "broken_toml.toml"
 
@@ -195,7 +196,7 @@ async def test_end_accepts_the_suggested_file_name(biceps, tmp_path):
         await session.pilot.press("e")
         box = session.app.screen.query_one(Input)
         box.value = str(tmp_path / "arm-f")
-        await session.pilot.pause(0.2)  # the suggestion is found in the background
+        await until(session.pilot, lambda: box._suggestion)  # found in the background
         box.action_home()
         await session.pilot.press("end")
         assert box.value == str(tmp_path / "arm-flexed.png")

@@ -21,7 +21,7 @@ HELP = files("biceps.tui").joinpath("help.md").read_text(encoding="utf-8")
 async def test_the_help_is_wrapped_beside_its_scrollbar(biceps, size):
     async with biceps(size) as session:
         await session.pilot.press("question_mark")
-        await session.pilot.pause(0.2)
+        await until(session.pilot, lambda: _help_written(session.app))
         log = session.app.screen.query_one(RichLog)
         room = log.scrollable_content_region.width
         assert log.virtual_size.width <= room
@@ -73,6 +73,10 @@ async def test_the_help_is_wrapped_again_when_the_terminal_is_resized(biceps):
         assert FIRST_PARAGRAPH in _shown(log)
 
 
+def _help_written(app) -> bool:
+    return bool(isinstance(app.screen, HelpScreen) and app.screen.query_one(RichLog).lines)
+
+
 def _footer_keys(session) -> list[FooterKey]:
     footer = session.app.screen.query_one(FittedFooter)
     return [key for key in footer.query(FooterKey) if key.display and key.parent.display]
@@ -119,6 +123,5 @@ async def test_the_help_opens_in_the_ansi_theme(biceps):
     async with biceps() as session:
         session.app.theme = "ansi-dark"
         await session.pilot.press("question_mark")
-        await session.pilot.pause(0.2)
-        assert session.app.screen.query_one(RichLog).lines
+        await until(session.pilot, lambda: _help_written(session.app))
         assert session.app.failure is None

@@ -4,7 +4,7 @@ it writes them itself, as Textual would, unless something else is drawn over it.
 from __future__ import annotations
 
 import re
-import time
+import threading
 
 import pytest
 
@@ -108,11 +108,11 @@ async def test_a_caption_s_row_is_repainted_only_when_it_changes(biceps, painted
 
 
 async def test_a_slow_picture_says_it_is_being_drawn_until_it_comes(biceps, monkeypatch):
-    render = SceneRenderer.render
+    render, drawn = SceneRenderer.render, threading.Event()
 
     def slow_phong(renderer, scene, width, height, framed=None, pixel_aspect=1.0):
         if scene.render.shading == "phong":  # as a first Phong frame compiles its kernels
-            time.sleep(1.0)
+            drawn.wait(30)
         return render(renderer, scene, width, height, framed, pixel_aspect)
 
     monkeypatch.setattr(SceneRenderer, "render", slow_phong)
@@ -120,8 +120,10 @@ async def test_a_slow_picture_says_it_is_being_drawn_until_it_comes(biceps, monk
         viewport = session.app.screen.query_one(Viewport)
         assert "drawing" not in viewport.border_subtitle
         await session.pilot.press("g")
-        await session.pilot.pause(0.6)
-        assert viewport.border_subtitle == "drawing…"
+        try:
+            await until(session.pilot, lambda: viewport.border_subtitle == "drawing…")
+        finally:
+            drawn.set()
         await session.settle()
         assert viewport.border_subtitle.startswith("phong")
 
@@ -163,14 +165,14 @@ async def test_a_frame_goes_through_textual_while_something_is_over_the_picture(
         app._driver.write = written.append  # headless: Textual itself writes nothing
         await _caught_up(pilot, viewport)
         app.notify("over the picture's lower right corner", timeout=0.5)
-        await pilot.pause(0.1)
+        await until(pilot, lambda: app.screen.query("Toast"))
         painted.clear()
         written.clear()
         await pilot.press("right")
         await _caught_up(pilot, viewport)
         assert painted  # by Textual
         assert not LINE_WRITTEN.findall("".join(written))
-        await pilot.pause(1.0)  # the notification gone
+        await until(pilot, lambda: not app.screen.query("Toast"))  # the notification gone
         await pilot.press("right")
         await _caught_up(pilot, viewport)
         assert LINE_WRITTEN.findall("".join(written))
