@@ -1,15 +1,15 @@
 """Every use of Textual's private parts, behind the few calls the app and the viewport make.
 
-Textual draws the whole screen on its UI thread; at 200x60 the picture alone kept it busy
-most of each frame. The app takes shorter ways through Textual's internals: the viewport
+Textual draws the whole screen on its UI thread, and at 200x60 the picture alone would keep
+it busy most of each frame. The app takes shorter ways through Textual's internals: the viewport
 writes a frame's new lines to the terminal itself when nothing covers it, reads the lines
 Textual has styled from its cache, and hands Textual lines that carry their terminal text
 (:class:`PrerenderedStrip`); the pacer asks the terminal where its cursor is; the app learns
 what Textual wrote (to paint a picture's image again over it) and which error ended it;
-the terminal's input is read leniently; the palette and the footer are guarded and fitted
-with Textual's own pieces. None of that is Textual's public API, so it is used only here,
-and only on a Textual known to have it: 8.2.7 (the first with
-``XTermParser._parse_extended_key``) up to 9, with every attribute touched present.
+the terminal's input is read leniently; the palette is guarded against faults of its own.
+None of that is Textual's public API, so it is used only here, and only on a Textual known
+to have it: 8.2.7 (the first with ``XTermParser._parse_extended_key``) up to 9, with every
+attribute touched present.
 
 Otherwise, or with ``BICEPS_TEXTUAL_PRIVATE=0``, the app takes the public path: Textual
 draws every line of the picture (the Line API), frames are paced by the frame-rate cap
@@ -66,7 +66,6 @@ def _missing() -> list[str]:
         from textual._compositor import ChopsUpdate, LayoutUpdate  # noqa: F401
         from textual._styles_cache import StylesCache
         from textual._xterm_parser import XTermParser
-        from textual.widgets._footer import FooterKey, FooterLabel, KeyGroup  # noqa: F401
     except ImportError as error:
         return [str(error)]
     needed: list[tuple[Any, str, Callable[[Any, str], bool]]] = [
@@ -357,17 +356,7 @@ def lenient_parser() -> type:
     return LenientParser
 
 
-# Textual's footer and palette, fitted and guarded.
-
-
-def footer_parts() -> tuple[type, type, type] | None:
-    """Textual's footer's key, group label and group of keys (not exported by 8.x), or None
-    on the public path."""
-    if not ENABLED:
-        return None
-    from textual.widgets._footer import FooterKey, FooterLabel, KeyGroup
-
-    return FooterKey, FooterLabel, KeyGroup
+# Textual's palette, guarded.
 
 
 def guarded_palette() -> type:

@@ -15,8 +15,6 @@ from textual.events import Resize
 from textual.widget import Widget
 from textual.widgets import Footer
 
-from biceps.tui.textual_private import footer_parts
-
 
 class FittedFooter(Footer):
     """A compact footer that drops the keys of least worth until the rest fit its width.
@@ -50,10 +48,7 @@ class FittedFooter(Footer):
 
     def _fit(self) -> None:
         """Keep the keys of most worth that fit beside the docked ones (the palette's key),
-        each as wide as it was laid out, all of them shown. (On the public path, Textual's
-        footer as it is: its pieces are not exported.)"""
-        if footer_parts() is None:
-            return
+        each as wide as it was laid out, all of them shown."""
         units = self._units()
         if any(not widget.region for unit in units for widget in unit):
             self.call_after_refresh(self._fit)  # not laid out yet
@@ -74,12 +69,11 @@ class FittedFooter(Footer):
     def _units(self) -> list[list[Widget]]:
         """The keys that go or stay together: a group of keys and its label, or the keys of
         one action (c and x, contract and stretch, both change the length)."""
-        _, label, _ = footer_parts()
         units: list[list[Widget]] = []
         for child in self.children:
             if child.styles.dock != "none":
                 continue
-            if units and (isinstance(child, label)
+            if units and (_is(child, "FooterLabel")
                           or _action(child) and _action(child) == _action(units[-1][-1])):
                 units[-1].append(child)
             else:
@@ -100,7 +94,12 @@ def _width(widget: Widget) -> int:
 
 def _action(widget: Widget) -> str:
     """The name of the action of a footer's key, or of a group's first key; else ''."""
-    key, _, group = footer_parts()
-    if isinstance(widget, group):  # (its keys may not be mounted yet)
-        widget = next(iter(widget.query(key)), None)
-    return widget.action.split("(", 1)[0] if isinstance(widget, key) else ""
+    if _is(widget, "KeyGroup"):  # (its keys may not be mounted yet)
+        widget = next(iter(widget.query("FooterKey")), None)
+    return widget.action.split("(", 1)[0] if _is(widget, "FooterKey") else ""
+
+
+def _is(widget: Widget | None, name: str) -> bool:
+    """Whether ``widget`` is one of Textual's footer's pieces, by its type's name, as a
+    stylesheet names it: the classes themselves are not exported (8.x)."""
+    return widget is not None and any(cls.__name__ == name for cls in type(widget).__mro__)
