@@ -41,7 +41,8 @@ def run_floor_app(segments: int, prerendered: bool) -> None:
     from textual.strip import Strip
     from textual.widget import Widget
 
-    from biceps.tui.prerendered import RESET, PrerenderedStrip, codes
+    from biceps.tui.prerendered import RESET, codes
+    from biceps.tui.textual_private import PrerenderedStrip
 
     def line(y: int, width: int, phase: int) -> Strip:
         run = max(width // segments, 1)
