@@ -29,3 +29,18 @@ def config_path(tmp_path: Path) -> Path:
 @pytest.fixture
 def config(config_path: Path) -> Config:
     return load_config(config_path)
+
+
+@pytest.fixture
+def private_path(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The viewport and the app on Textual's internals (tui/textual_private.py), which the
+    Textual the tests run on has, even under BICEPS_TEXTUAL_PRIVATE=0: for tests of what
+    only that path does (lines written straight to the terminal, images, lines that carry
+    their text, the colours and the pacing of a process of its own). The palette's guards
+    are chosen once, on import, and stay as they are. A process the test starts (the app
+    in a pty) is told so too."""
+    from biceps.tui import textual_private
+
+    assert not textual_private._missing(), "the Textual under test lacks what the app uses"
+    monkeypatch.setattr(textual_private, "ENABLED", True)
+    monkeypatch.setenv(textual_private.SWITCH, "1")

@@ -110,7 +110,7 @@ def test_half_blocks_and_colours_asked_on_the_command_line_ask_the_terminal_noth
     assert started["asked"] == 1
 
 
-def test_the_config_may_choose_real_pixels(started, tmp_path):
+def test_the_config_may_choose_real_pixels(private_path, started, tmp_path):
     path = tmp_path / "sixel.toml"
     path.write_text(DEFAULT_CONFIG.read_text().replace('graphics = "halfblocks"',
                                                        'graphics = "sixel"'))

@@ -29,7 +29,7 @@ def _colour_codes(output: bytes) -> list[str]:
     return [code.decode() for code in re.findall(rb"\x1b\[([0-9;]*)m", output)]
 
 
-def test_a_256_colour_terminal_gets_palette_codes_only(config_path):
+def test_a_256_colour_terminal_gets_palette_codes_only(private_path, config_path):
     codes = _colour_codes(_first_picture(config_path, "--colors", "256"))
     assert any("48;5;" in code for code in codes)
     assert not any(re.search(r"(^|;)[34]8;2;", code) for code in codes)
@@ -38,7 +38,7 @@ def test_a_256_colour_terminal_gets_palette_codes_only(config_path):
     assert 233 in backgrounds and 16 not in backgrounds
 
 
-def test_a_terminal_named_plain_xterm_gets_256_colours_not_16(config_path):
+def test_a_terminal_named_plain_xterm_gets_256_colours_not_16(private_path, config_path):
     # TERM=xterm, Debian's xterm's own, which Rich reads as 16 colours.
     codes = _colour_codes(_first_picture(config_path, TERM="xterm", COLORTERM=""))
     assert any("48;5;" in code for code in codes)
@@ -87,7 +87,7 @@ def test_the_picture_and_its_caption_on_the_terminal_follow_the_keys(config_path
     np.testing.assert_array_equal(screen.pixels(1, 1, width, height), frame)
 
 
-def test_after_its_frame_the_app_asks_where_the_cursor_is(config_path):
+def test_after_its_frame_the_app_asks_where_the_cursor_is(private_path, config_path):
     output = _first_picture(config_path)
     picture = output.index(UPPER_HALF)
     assert re.search(rb"\x1b7\x1b\[1;\d+H\x1b\[6n\x1b8", output[picture:])

@@ -90,14 +90,3 @@ def biceps(config: Config):
 
     return start
 
-
-@pytest.fixture
-def private_path(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The viewport and the app on Textual's internals (tui/textual_private.py), which the
-    Textual the tests run on has, even under BICEPS_TEXTUAL_PRIVATE=0: for tests of what
-    only that path does (lines written straight to the terminal, images, lines that carry
-    their text). The palette's guards are chosen once, on import, and stay as they are."""
-    from biceps.tui import textual_private
-
-    assert not textual_private._missing(), "the Textual under test lacks what the app uses"
-    monkeypatch.setattr(textual_private, "ENABLED", True)
