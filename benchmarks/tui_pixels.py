@@ -45,7 +45,7 @@ from tui_pty import (  # noqa: E402
 
 DEVICE_ATTRIBUTES_QUERY = b"\x1b[c"
 RESTORE_CURSOR = b"\x1b8"
-IMAGE_STARTS = (b"\x1b_Ga=T", b"\x1bP0;1;0q")  # kitty, sixel (as terminal/kitty.py, terminal/sixel.py)
+IMAGE_STARTS = (b"\x1b_Ga=T", b"\x1bP0;1;0q")  # kitty, sixel (terminal/kitty.py, sixel.py)
 
 
 def answers(graphics: str, cell: tuple[int, int]) -> bytes:

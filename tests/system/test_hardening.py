@@ -23,7 +23,7 @@ def _app(config: Path) -> list[str]:
     return [sys.executable, "-m", "biceps", "app", str(config)]
 
 
-def test_bytes_and_sequences_it_cannot_read_do_not_end_the_app(config_path):
+def test_bytes_and_sequences_it_cannot_read_do_not_end_the_app(private_path, config_path):
     # A lone continuation byte, a character cut short, a lead byte before an ASCII one, a
     # Kitty key sequence with a colon in a field; then ? (help): the app has read past
     # them and still answers.
@@ -47,7 +47,8 @@ def test_a_file_named_with_escape_sequences_shows_them_as_text(tmp_path):
     assert run.exit_code == 0
 
 
-def test_an_error_that_gets_through_offers_to_save_and_ends_with_status_1(config_path,
+def test_an_error_that_gets_through_offers_to_save_and_ends_with_status_1(private_path,
+                                                                          config_path,
                                                                           tmp_path):
     # The app as installed, but with a fault in one of its keys (l: the light to the right).
     broken = textwrap.dedent(f"""

@@ -156,8 +156,8 @@ async def test_the_viewport_writes_a_frame_as_textual_would(biceps, private_path
         assert text.startswith("\x1b[?2026h") == app._sync_available
 
 
-async def test_a_frame_goes_through_textual_while_something_is_over_the_picture(private_path, config,
-                                                                               painted):
+async def test_a_frame_goes_through_textual_while_something_is_over_the_picture(
+        private_path, config, painted):
     written: list[str] = []
     app = BicepsApp(config)
     async with app.run_test(size=(100, 30), notifications=True) as pilot:

@@ -52,6 +52,8 @@ from textual.widget import Widget
 
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene, SceneRenderer, supersampling
+from biceps.terminal.palette import Palette256, background_colour
+from biceps.terminal.palette import colour as palette_colour
 from biceps.tui.ahead import Preparation, preparing
 from biceps.tui.encoder import Picture, PictureEncoder
 from biceps.tui.halfblocks import HalfBlocks, TextCells
@@ -60,8 +62,6 @@ from biceps.tui.pacing import Pacer
 from biceps.tui.pixels import ImageEncoder
 from biceps.tui import textual_private as private
 from biceps.tui.prerendered import console_system
-from biceps.terminal.palette import Palette256, background_colour
-from biceps.terminal.palette import colour as palette_colour
 
 
 MESSAGE = Style(color="#b8b8b8")  # the first run's message, on the picture's background
@@ -148,8 +148,8 @@ class Viewport(Widget, can_focus=True):
         self._pacer = pacer
         encoder = HalfBlocks() if encoder is None else encoder
         # Text in a 256-colour terminal: every frame mapped onto its palette as a whole
-        # (terminal/palette.py), where Textual would map each colour on its own. The lines carry
-        # their text for this terminal's colours.
+        # (terminal/palette.py), where Textual would map each colour on its own. The lines
+        # carry their text for this terminal's colours.
         self._palette: Palette256 | None = None
         system = console_system(self.app.console)
         if isinstance(encoder, TextCells) and system == "256":
