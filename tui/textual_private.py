@@ -78,7 +78,7 @@ def _missing() -> list[str]:
         (StylesCache, "set_dirty", hasattr), (XTermParser, "_parse_extended_key", hasattr),
         (XTermParser, "feed", hasattr), (XTermParser, "tick", hasattr),
         (CommandPalette, "_GATHER_COMMANDS_GROUP", hasattr),
-        (CommandPalette, "_on_click", hasattr), (constants, "COLOR_SYSTEM", hasattr),
+        (constants, "COLOR_SYSTEM", hasattr),
     ]
     missing += [f"{getattr(owner, '__name__', owner)}.{name}" for owner, name, has in needed
                 if not has(owner, name)]
@@ -360,17 +360,14 @@ def lenient_parser() -> type:
 
 
 def guarded_palette() -> type:
-    """Textual's command palette, guarded against two faults of Textual's: a search that
-    finishes after the palette has gone (NoMatches), and a click outside it in a window
-    shrunk since (NoWidget). Textual's own on the public path."""
+    """Textual's command palette, guarded against a fault of Textual's: a search that
+    finishes after the palette has gone (NoMatches). Textual's own on the public path."""
     from textual.command import CommandList, CommandPalette
 
     if not ENABLED:
         return CommandPalette
     from textual import work
     from textual.css.query import NoMatches
-    from textual.errors import NoWidget
-    from textual.events import Click
 
     class GuardedPalette(CommandPalette):
         @work(exclusive=True, group=CommandPalette._GATHER_COMMANDS_GROUP)
@@ -383,14 +380,5 @@ def guarded_palette() -> type:
             except NoMatches:
                 if self.query(CommandList):  # the list is there: a fault of another kind
                     raise
-
-        def _on_click(self, event: Click) -> None:
-            # A click outside the palette closes it (Textual's handler, next): it looks for
-            # what was clicked, and in a window shrunk since (to 1x3, say) there is nothing
-            # there, NoWidget. Such a click does nothing.
-            try:
-                self.get_widget_at(event.screen_x, event.screen_y)
-            except NoWidget:
-                event.prevent_default()
 
     return GuardedPalette

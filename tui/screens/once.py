@@ -12,10 +12,10 @@ that are dropped.
 The palette has more faults, guarded here too: page down before its list has been laid
 out (ctrl+p then page down at once) looks up a line the list has not made yet, KeyError: 0;
 and a key typed just before it closed starts a search that ends after it has gone, and
-looks for its list there, NoMatches (guarded in ``tui/textual_private.py``, with a click
-outside it in a window shrunk since). So do its timers and watchers (the busy indicator,
-"No matches found"), firing as it closes: :func:`a_closing_palette_s_fault` tells the app
-to let those pass.
+looks for its list there, NoMatches (guarded in ``tui/textual_private.py``); and a click
+outside it in a window shrunk since finds nothing there, NoWidget. So do its timers and
+watchers (the busy indicator, "No matches found"), firing as it closes:
+:func:`a_closing_palette_s_fault` tells the app to let those pass.
 """
 
 from __future__ import annotations
@@ -27,6 +27,8 @@ from textual.await_complete import AwaitComplete
 from textual.binding import Binding
 from textual.command import CommandList, CommandPalette
 from textual.css.query import NoMatches
+from textual.errors import NoWidget
+from textual.events import Click
 from textual.screen import ModalScreen
 from textual.widgets import Input, OptionList
 
@@ -79,6 +81,15 @@ class Palette(guarded_palette(), DismissedOnce[None]):
         if self._dismissed:
             event.prevent_default()
             event.stop()
+
+    def on_click(self, event: Click) -> None:
+        # A click outside the palette closes it (Textual's handler, after this one): it
+        # looks for what was clicked, and in a window shrunk since (to 1x3, say) there is
+        # nothing there, NoWidget. Such a click does nothing.
+        try:
+            self.get_widget_at(event.screen_x, event.screen_y)
+        except NoWidget:
+            event.prevent_default()
 
     def action_page(self, direction: int) -> None:
         lists = self.query(CommandList)  # none yet, or none left as the palette closes
