@@ -412,10 +412,9 @@ def _white(screen: np.ndarray, corner: tuple[int, int], expected: np.ndarray) ->
 def test_the_app_shows_its_picture(name, display, sshd, tmp_path, request):
     cell = CELLS[name]
     _needed(cell)
-    if cell.shows in ("sixel", "kitty") or cell.colours == "256":
-        # Real pixels and the colours the app chooses are the private path's (on the public
-        # one, half-blocks in Textual's own colours).
-        request.getfixturevalue("private_path")
+    # Real pixels and the colours the app chooses are the private path's (on the public one,
+    # half-blocks in the colours Textual guesses).
+    request.getfixturevalue("private_path")
     if cell.within == "ssh" and sshd is None:
         if os.environ.get("CI"):
             pytest.fail("ssh-keygen or sshd is missing: .ci/run installs openssh-server")

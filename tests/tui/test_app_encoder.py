@@ -96,7 +96,7 @@ async def test_frames_are_the_cells_times_the_encoders_cell_and_its_lines_are_sh
 
 
 async def test_the_image_is_written_at_the_pictures_corner_and_cleared_at_the_end(
-    config: Config,
+    private_path: None, config: Config,
 ):
     app = OneViewport(Scene.of(config), Corners(image="<image>", clearing="<clear>"))
     async with app.run_test(size=(34, 12)) as pilot:

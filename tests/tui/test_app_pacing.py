@@ -220,7 +220,7 @@ async def _a_while(pilot) -> None:
         await pilot.pause(0.01)
 
 
-async def test_no_frame_is_shown_until_the_terminal_has_taken_the_last(config):
+async def test_no_frame_is_shown_until_the_terminal_has_taken_the_last(private_path, config):
     app = BicepsApp(config)
     terminal = Terminal(app)
     async with app.run_test(size=(100, 30)) as pilot:
@@ -267,7 +267,8 @@ async def _waiting_for_an_answer(app, pilot, terminal: Terminal) -> Viewport:
     raise AssertionError("the picture never caught up")
 
 
-async def test_the_next_frame_is_drawn_while_the_terminal_takes_the_last(config, monkeypatch):
+async def test_the_next_frame_is_drawn_while_the_terminal_takes_the_last(private_path, config,
+                                                                       monkeypatch):
     draws = Draws(monkeypatch)
     app = BicepsApp(config)
     terminal = Terminal(app)
@@ -286,7 +287,7 @@ async def test_the_next_frame_is_drawn_while_the_terminal_takes_the_last(config,
 
 @pytest.mark.parametrize("stale_after, first_shown", [(60.0, 1), (0.0, 2)])
 async def test_a_frame_drawn_ahead_too_long_ago_is_drawn_again_from_the_newest_scene(
-        config, monkeypatch, stale_after, first_shown):
+        private_path, config, monkeypatch, stale_after, first_shown):
     # Over a slow link the answer takes a while: by then the frame drawn ahead is old, and
     # if the keys have moved on since, it would show them that late.
     monkeypatch.setattr(biceps.tui.widgets.viewport, "STALE_AFTER", stale_after)

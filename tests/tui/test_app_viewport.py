@@ -61,7 +61,7 @@ def painted_framed(monkeypatch) -> list[int]:
     return _record_painted(monkeypatch, 1)
 
 
-async def test_a_new_frame_repaints_only_the_lines_that_changed(biceps, painted):
+async def test_a_new_frame_repaints_only_the_lines_that_changed(private_path, biceps, painted):
     async with biceps(size=(100, 30)) as session:
         viewport = session.app.screen.query_one(Viewport)
         rows = range(viewport.size.height)
@@ -93,7 +93,7 @@ async def test_the_captions_follow_the_picture_on_screen(biceps):
         assert viewport.border_title.startswith(f"yaw {session.app.scene.view.yaw:g}°")
 
 
-async def test_a_caption_s_row_is_repainted_only_when_it_changes(biceps, painted_framed):
+async def test_a_caption_s_row_is_repainted_only_when_it_changes(private_path, biceps, painted_framed):
     async with biceps(size=(100, 30)) as session:
         viewport = session.app.screen.query_one(Viewport)
         below = viewport.size.height
