@@ -78,7 +78,7 @@ from biceps.tui.pixels import encoder_for
 from biceps.tui.screens.choice import Answer, Choice
 from biceps.tui.screens.help import HelpScreen
 from biceps.tui.screens.main import MainScreen
-from biceps.tui.screens.once import Palette, a_closing_palette_s_fault
+from biceps.tui.screens.once import Palette
 from biceps.tui.screens.prompt import Field, Prompt
 from biceps.tui.screens.record import RecordPrompt, as_recording
 from biceps.tui.suggest import ModelSuggester, PathSuggester
@@ -247,9 +247,6 @@ class BicepsApp(AppHooks):
         # sending only the colour codes that change (tui/sgr.py) once it can (tui/ahead.py).
         read_terminal_leniently()
         return lean_once_ready(super().get_driver_class())
-
-    def lets_pass(self, error: BaseException) -> bool:
-        return a_closing_palette_s_fault(error)
 
     def ending_on(self, error: BaseException) -> None:
         # Textual ends the app on an error nothing caught: note it, so that run_app can

@@ -6,7 +6,8 @@ writes a frame's new lines to the terminal itself when nothing covers it, reads 
 Textual has styled from its cache, and hands Textual lines that carry their terminal text
 (:class:`PrerenderedStrip`); the pacer asks the terminal where its cursor is; the app learns
 what Textual wrote (to paint a picture's image again over it) and which error ended it;
-the terminal's input is read leniently; the palette is guarded against faults of its own.
+the terminal's input is read leniently, a paste kept whole and ended if its end never
+comes; the palette is guarded against faults of its own, as it searches and as it closes.
 None of that is Textual's public API, so it is used only here, and only on a Textual known
 to have it: 8.2.7 (the first with ``XTermParser._parse_extended_key``) up to 9, with every
 attribute touched present.
@@ -14,7 +15,8 @@ attribute touched present.
 Otherwise, or with ``BICEPS_TEXTUAL_PRIVATE=0``, the app takes the public path: Textual
 draws every line of the picture (the Line API), frames are paced by the frame-rate cap
 alone, pictures are half-blocks (real pixels need the terminal written to directly), the
-colours are Textual's own choice, and input and the palette are Textual's as they come.
+colours are Textual's own choice, input and the palette are Textual's as they come, and
+an error that ends the app is Textual's to print (no crash report).
 It works, more slowly; ``biceps doctor`` says which path it is on (:func:`describe`).
 """
 
@@ -208,16 +210,11 @@ def update_touches(update: object, area: Region) -> bool:
 
 class AppHooks(App):
     """An app told what Textual wrote (:meth:`screen_written`) and what error ends it
-    (:meth:`ending_on`), and asked which errors to let pass (:meth:`lets_pass`), which
-    Textual has no public hooks for."""
+    (:meth:`ending_on`), which Textual has no public hooks for; a closing palette's faults
+    are let pass (:func:`a_closing_palette_s_fault`)."""
 
     def screen_written(self, screen: Any, update: object) -> None:
         """Textual has written ``update`` of ``screen`` to the terminal (the private path)."""
-
-    def lets_pass(self, error: BaseException) -> bool:
-        """Whether ``error``, which nothing caught, is a fault of Textual's that ends
-        nothing of the app's, to be let pass rather than end it (the private path)."""
-        return False
 
     def ending_on(self, error: BaseException) -> None:
         """``error``, which nothing caught, ends the app (the private path; on the public
@@ -233,7 +230,7 @@ class AppHooks(App):
 
     def _handle_exception(self, error: Exception) -> None:
         if ENABLED:
-            if self.lets_pass(error):
+            if a_closing_palette_s_fault(error):
                 return
             self.ending_on(error)
         super()._handle_exception(error)
@@ -356,7 +353,7 @@ def lenient_parser() -> type:
     return LenientParser
 
 
-# Textual's palette, guarded.
+# Textual's palette, guarded (the one faults as it closes, in :class:`AppHooks`).
 
 
 def guarded_palette() -> type:
@@ -382,3 +379,23 @@ def guarded_palette() -> type:
                     raise
 
     return GuardedPalette
+
+
+def a_closing_palette_s_fault(error: BaseException) -> bool:
+    """Whether ``error`` is Textual's command palette looking for a widget of its own
+    (NoMatches) once its widgets have gone, as it closes: a timer or a watcher of its
+    search that fired late (showing it busy, "No matches found"). Nothing is lost by letting
+    it pass: the palette is going. Found by the palette in the error's traceback, which is
+    Textual's own code, as it stands."""
+    from textual.command import CommandList, CommandPalette
+    from textual.css.query import NoMatches
+
+    if not isinstance(error, NoMatches):
+        return False
+    entry = error.__traceback__
+    while entry is not None:
+        palette = entry.tb_frame.f_locals.get("self")
+        if isinstance(palette, CommandPalette):
+            return not palette.query(CommandList)
+        entry = entry.tb_next
+    return False

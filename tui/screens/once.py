@@ -12,10 +12,9 @@ that are dropped.
 The palette has more faults, guarded here too: page down before its list has been laid
 out (ctrl+p then page down at once) looks up a line the list has not made yet, KeyError: 0;
 and a key typed just before it closed starts a search that ends after it has gone, and
-looks for its list there, NoMatches (guarded in ``tui/textual_private.py``); and a click
-outside it in a window shrunk since finds nothing there, NoWidget. So do its timers and
-watchers (the busy indicator, "No matches found"), firing as it closes:
-:func:`a_closing_palette_s_fault` tells the app to let those pass.
+looks for its list there, NoMatches, as do its timers and watchers firing as it closes
+(both let pass in ``tui/textual_private.py``); and a click outside it in a window shrunk
+since finds nothing there, NoWidget.
 """
 
 from __future__ import annotations
@@ -25,8 +24,7 @@ from typing import TypeVar
 from textual import on
 from textual.await_complete import AwaitComplete
 from textual.binding import Binding
-from textual.command import CommandList, CommandPalette
-from textual.css.query import NoMatches
+from textual.command import CommandList
 from textual.errors import NoWidget
 from textual.events import Click
 from textual.screen import ModalScreen
@@ -100,18 +98,3 @@ class Palette(guarded_palette(), DismissedOnce[None]):
             commands.action_page_down()
         else:
             commands.action_page_up()
-
-
-def a_closing_palette_s_fault(error: BaseException) -> bool:
-    """Whether ``error`` is Textual's command palette looking for a widget of its own
-    (NoMatches) once its widgets have gone, as it closes: a timer or a watcher of its
-    search that fired late. Nothing is lost by letting it pass: the palette is going."""
-    if not isinstance(error, NoMatches):
-        return False
-    entry = error.__traceback__
-    while entry is not None:
-        palette = entry.tb_frame.f_locals.get("self")
-        if isinstance(palette, CommandPalette):
-            return not palette.query(CommandList)
-        entry = entry.tb_next
-    return False
