@@ -48,7 +48,8 @@ def _read_until(master: int, output: bytearray, condition, timeout: float,
 
 
 @pytest.mark.parametrize("version", [b"0.35.2", b"0.26.5"])
-def test_kitty_images_go_through_tmux_placed_by_placeholders_from_kitty_028(private_path, tmp_path, version):
+def test_kitty_images_go_through_tmux_placed_by_placeholders_from_kitty_028(private_path,
+                                                                           tmp_path, version):
     if shutil.which("tmux") is None:
         if os.environ.get("CI"):
             pytest.fail("tmux is missing: .ci/run installs it")

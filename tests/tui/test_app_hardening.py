@@ -203,8 +203,8 @@ KEYS_AS_IT_CLOSES = ["c", "x", "e", "question_mark", "escape", "enter", "ctrl+p"
 
 
 @pytest.mark.parametrize("seed", range(4))
-async def test_keys_still_coming_as_the_app_closes_do_not_end_it_on_an_error(private_path, config, tmp_path,
-                                                                          monkeypatch, seed):
+async def test_keys_still_coming_as_the_app_closes_do_not_end_it_on_an_error(
+        private_path, config, tmp_path, monkeypatch, seed):
     # Queued behind the close, keys reached an app with no screen left (ScreenStackError,
     # Textual's), and a palette's search started as it opened found its list gone
     # (NoMatches). The fuzz test ended so once in a while.
@@ -460,8 +460,8 @@ class Broken(Exception):
     pass
 
 
-async def test_an_unexpected_error_offers_to_save_the_model_it_left(private_path, config, config_path,
-                                                                    monkeypatch):
+async def test_an_unexpected_error_offers_to_save_the_model_it_left(private_path, config,
+                                                                    config_path, monkeypatch):
     app = BicepsApp(config)
     with pytest.raises(Broken):
         async with app.run_test() as pilot:
@@ -489,7 +489,8 @@ async def test_an_unexpected_error_offers_to_save_the_model_it_left(private_path
     assert load_config(config_path).arm.length == pytest.approx(32.8)  # both c, as it was
 
 
-async def test_an_unexpected_error_with_nothing_unsaved_needs_no_rescue(private_path, config, monkeypatch):
+async def test_an_unexpected_error_with_nothing_unsaved_needs_no_rescue(private_path, config,
+                                                                        monkeypatch):
     def broken(*args):
         raise Broken("a fault in the app")
 

@@ -93,7 +93,8 @@ async def test_the_captions_follow_the_picture_on_screen(biceps):
         assert viewport.border_title.startswith(f"yaw {session.app.scene.view.yaw:g}°")
 
 
-async def test_a_caption_s_row_is_repainted_only_when_it_changes(private_path, biceps, painted_framed):
+async def test_a_caption_s_row_is_repainted_only_when_it_changes(private_path, biceps,
+                                                                  painted_framed):
     async with biceps(size=(100, 30)) as session:
         viewport = session.app.screen.query_one(Viewport)
         below = viewport.size.height
