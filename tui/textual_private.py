@@ -78,7 +78,6 @@ def _missing() -> list[str]:
         (Widget, "_styles_cache", _assigned), (StylesCache, "_cache", _assigned),
         (StylesCache, "_width", _assigned), (StylesCache, "is_dirty", hasattr),
         (StylesCache, "set_dirty", hasattr), (XTermParser, "_parse_extended_key", hasattr),
-        (XTermParser, "feed", hasattr), (XTermParser, "tick", hasattr),
         (CommandPalette, "_GATHER_COMMANDS_GROUP", hasattr),
         (constants, "COLOR_SYSTEM", hasattr),
     ]
