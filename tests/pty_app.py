@@ -12,7 +12,7 @@ import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterator
+from typing import Callable, Iterator
 
 import pytest
 
@@ -118,26 +118,54 @@ def shown_after(command: list[str], *, cwd: Path, keys: bytes, expected: bytes,
 
 def converse(command: list[str], *, cwd: Path, script: list[tuple[bytes, bytes]],
              size: tuple[int, int] = (100, 30), timeout: float = 120.0,
-             **variables: str) -> Run:
+             again: float | None = None, **variables: str) -> Run:
     """Start ``command`` in a terminal of ``size`` (with the environment ``variables``);
     for each ``(expected, keys)`` of ``script``, read until ``expected`` has been written
     since the last keys (and the output has paused), then type ``keys``; then wait for the
-    command to end."""
+    command to end. With ``again``, keys whose answer has not come within ``again``
+    seconds are typed again, as a person would (on a loaded machine the app leaves out
+    keys that waited too long while it started, tui/behind.py)."""
     with _terminal(command, cwd, size, variables) as (process, master):
         output = bytearray()
         deadline = time.monotonic() + timeout
-        for expected, keys in script:
+        keys = b""
+        for expected, next_keys in script:
             since = len(output)
-            _read_until(master, output, deadline, lambda: expected in output[since:])
-            os.write(master, keys)
-        _read_until(master, output, deadline, lambda: process.poll() is not None)
+            _read_until(master, output, deadline, lambda: expected in output[since:],
+                        _typing(master, keys, again))
+            os.write(master, next_keys)
+            keys = next_keys
+        _read_until(master, output, deadline, lambda: process.poll() is not None,
+                    _typing(master, keys, again))
         return Run(bytes(output), process.wait(timeout=max(deadline - time.monotonic(), 1)))
 
 
-def _read_until(master: int, output: bytearray, deadline: float, done) -> None:
-    """Read into ``output`` until ``done()`` and a pause of 0.3 s, or the other side closes."""
+def _typing(master: int, keys: bytes, again: float | None) -> Callable[[], None] | None:
+    """What types ``keys`` again each ``again`` seconds, or None."""
+    if again is None or not keys:
+        return None
+    typed = time.monotonic()
+
+    def retype() -> None:
+        nonlocal typed
+        if time.monotonic() - typed > again:
+            try:
+                os.write(master, keys)
+            except OSError:  # the app is gone
+                return
+            typed = time.monotonic()
+
+    return retype
+
+
+def _read_until(master: int, output: bytearray, deadline: float, done,
+                waiting: Callable[[], None] | None = None) -> None:
+    """Read into ``output`` until ``done()`` and a pause of 0.3 s, or the other side closes;
+    ``waiting()`` is called while ``done()`` is not."""
     quiet_since = None
     while time.monotonic() < deadline:
+        if waiting is not None and not done():
+            waiting()
         if select.select([master], [], [], 0.05)[0]:
             try:
                 output += os.read(master, 1 << 16)

@@ -1,10 +1,32 @@
 """Tests that start processes (the command, the app in a pseudo-terminal, a fresh venv):
 slower, so they carry the ``system`` marker (``pytest -m "not system"`` leaves them out)."""
 
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
 import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     for item in items:
         if "tests/system/" in item.nodeid:
             item.add_marker(pytest.mark.system)
+
+
+@pytest.fixture(scope="session")
+def wheel(tmp_path_factory) -> Path:
+    """A wheel built from this repository, once a run (two builds at once share the
+    repository's build/ folder and break each other)."""
+    where = tmp_path_factory.mktemp("wheel")
+    built = subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(where), str(ROOT)],
+        capture_output=True, text=True, timeout=600,
+    )
+    assert built.returncode == 0, built.stderr
+    (built_wheel,) = where.glob("biceps-*.whl")
+    return built_wheel

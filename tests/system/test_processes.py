@@ -7,7 +7,6 @@ import pkgutil
 import select
 import subprocess
 import sys
-import sysconfig
 import textwrap
 from pathlib import Path
 
@@ -18,6 +17,7 @@ from PIL import Image
 import biceps.engine
 import biceps.terminal
 from biceps.engine.config import DEFAULT_CONFIG
+from installs import fresh_venv
 from pty_app import first_picture
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -162,27 +162,9 @@ def test_a_real_process_prints_no_traceback(name):
 
 
 @pytest.fixture(scope="module")
-def installed(tmp_path_factory) -> Path:
-    """A fresh virtual environment holding a wheel built from this repository, and the
-    bin folder of it. Its dependencies come from the environment running the tests, added
-    with a .pth line (which, unlike a site folder, runs none of that folder's .pth files,
-    so the editable install there stays out)."""
-    where = tmp_path_factory.mktemp("wheel")
-    built = subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(where), str(ROOT)],
-        capture_output=True, text=True, timeout=600,
-    )
-    assert built.returncode == 0, built.stderr
-    (wheel,) = where.glob("biceps-*.whl")
-    venv = where / "venv"
-    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=300)
-    python = venv / "bin" / "python"
-    subprocess.run([python, "-m", "pip", "install", "-q", "--no-deps", "--no-index", wheel],
-                   check=True, timeout=300)
-    purelib = subprocess.run([python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
-                             capture_output=True, text=True, check=True).stdout.strip()
-    Path(purelib, "dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
-    return venv / "bin"
+def installed(tmp_path_factory, wheel) -> Path:
+    """The bin folder of a fresh virtual environment holding the wheel."""
+    return fresh_venv(tmp_path_factory.mktemp("installed"), wheel)
 
 
 def test_a_wheel_installs_one_biceps_package_and_the_bundled_models(installed):

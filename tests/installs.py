@@ -1,0 +1,29 @@
+"""Fresh virtual environments holding the wheel, as a user installs it."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import sysconfig
+from pathlib import Path
+
+
+def fresh_venv(where: Path, wheel: Path, *requirements: str) -> Path:
+    """A fresh virtual environment in ``where`` holding ``wheel`` and ``requirements``
+    (from the package index), and the bin folder of it. Its other dependencies come from
+    the environment running the tests, added with a .pth line, which comes after the
+    venv's own packages (and, unlike a site folder, runs none of that folder's .pth files,
+    so the editable install there stays out)."""
+    venv = where / "venv"
+    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=300)
+    python = venv / "bin" / "python"
+    subprocess.run([python, "-m", "pip", "install", "-q", "--no-deps", "--no-index", wheel],
+                   check=True, timeout=300)
+    if requirements:
+        subprocess.run([python, "-m", "pip", "install", "-q", "--no-deps", *requirements],
+                       check=True, timeout=600)
+    purelib = subprocess.run(
+        [python, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+        capture_output=True, text=True, check=True).stdout.strip()
+    Path(purelib, "dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
+    return venv / "bin"
