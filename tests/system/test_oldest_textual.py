@@ -36,7 +36,7 @@ def test_the_pin_allows_no_textual_older_than_the_seam_knows():
     assert textual_private._version(OLDEST) == textual_private.OLDEST
 
 
-def test_the_app_runs_on_the_oldest_textual_the_pin_allows(oldest, tmp_path):
+def test_the_app_runs_on_the_oldest_textual_the_pin_allows(private_path, oldest, tmp_path):
     doctor = subprocess.run([oldest / "biceps", "doctor"], capture_output=True, text=True,
                             cwd=tmp_path, timeout=300)
     assert doctor.returncode == 0, doctor.stderr
