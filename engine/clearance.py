@@ -198,7 +198,7 @@ def _turned(sides: np.ndarray, axes: np.ndarray) -> np.ndarray:
     """(m, 3) the unit ``sides`` (m, 3) turned a quarter about the unit ``axes``, towards
     the arm's outside (``+z``)."""
     # np.cross's own formula, written out (the same bits): its checks and axis moves cost
-    # more than the arithmetic on a muscle's few dozen sections, 0.07 ms of the six's pose.
+    # more than the arithmetic on a muscle's few dozen sections.
     (ax, ay, az), (sx, sy, sz) = axes.T, sides.T
     turned = np.column_stack([ay * sz - az * sy, az * sx - ax * sz, ax * sy - ay * sx])
     return turned * np.where(turned[:, 2:] < 0.0, -1.0, 1.0)
@@ -254,15 +254,14 @@ def _cuts(points, radius, axes, centres, sphere_radii):
     # reach the disc: the work below is on those pairs alone, as flat arrays.
     # The spheres' heights along each distinct axis, once: the sections of a straight
     # stretch share theirs, so a path has one or two runs of them but for a bend's arc;
-    # (m, k) products cost 0.05 to 0.1 ms a muscle, a fifth of its clearance. The same
-    # einsum on fewer rows gives the same bits.
+    # (m, k) products over every section would be a good part of a muscle's clearance.
+    # The same einsum on fewer rows gives the same bits.
     first = np.ones(len(axes), dtype=bool)
     first[1:] = np.any(axes[1:] != axes[:-1], axis=1)
     height = (np.einsum("kc,uc->uk", centres, axes[first])[np.cumsum(first) - 1]
               - np.einsum("mc,mc->m", points, axes)[:, None])
     # The pairs as flat indices and rows gathered by np.take: the same values as np.nonzero
-    # on the (m, k) mask and fancy indexing, which cost 4 and 5 times as much (the
-    # driver's sections against the other five muscles and the bones: 0.17 -> 0.08 ms).
+    # on the (m, k) mask and fancy indexing, which cost several times as much.
     pairs = np.flatnonzero(np.abs(height) < sphere_radii)
     section, sphere = np.divmod(pairs, len(centres))
     height = height.ravel()[pairs]

@@ -158,12 +158,12 @@ def scene_mesh(arm: Arm, render: RenderSettings, hidden: frozenset[str] = frozen
     ends = np.cumsum([len(mesh.vertices) for mesh in parts.values()])
     spans = dict(zip(parts, zip([0, *ends[:-1]], ends)))
     # Component-major, the renderer's layout (engine/raster/__init__.py), a channel at a time:
-    # numpy's loops over rows of three took 7 times as long, 0.34 ms of the six's pose.
+    # numpy's loops over rows of three are far slower.
     albedo = np.empty((3, ends[-1]), np.float32)
     albedo[:] = _unit_rgb(render.bone_colour)[:, None]
     tendon_colour = _unit_rgb(render.tendon_colour)
     colours = (render.muscle_colour, *(companion.colour for companion in arm.companions))
-    flexion = arm.flexion  # worked out from the length at each read: 9 us
+    flexion = arm.flexion  # worked out from the length at each read: read once
     for index, (name, muscle, path, colour) in enumerate(
             zip(arm.names, arm.muscles, arm.paths, colours)):
         if name in hidden:
@@ -264,8 +264,8 @@ def outline(vertices: np.ndarray, directions: int = 256, stride: int = 4) -> np.
     ring = np.sqrt(1.0 - height**2)
     lattice = np.array([ring * np.cos(turn), height, ring * np.sin(turn)])  # (3, k)
     some = vertices[::stride]
-    # Reduced along rows of one coordinate each: over the columns of every 4th row of three,
-    # numpy took 0.27 ms of the six's 0.78 (the same extremes: min and max do not round).
+    # Reduced along rows of one coordinate each: numpy reduces the columns of rows of three
+    # far more slowly (the same extremes: min and max do not round).
     coordinates = some.T.copy()
     centre = (coordinates.min(axis=1) + coordinates.max(axis=1)) / 2.0
     farthest, best = np.empty(directions, np.int64), np.empty(directions)

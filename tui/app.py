@@ -359,7 +359,7 @@ class BicepsApp(AppHooks):
 
     def watch_scene(self, old: Scene, scene: Scene) -> None:
         # A turn, a move, the light leave the model as it was, saved or not: no comparing it
-        # with the saved one at each step of a held key (0.3 ms with elbow.toml's six).
+        # with the saved one at each step of a held key (which walks every muscle's nodes).
         if scene.arm is not old.arm:
             self.unsaved = has_unsaved_edits(scene, self._saved)
         self._follow_effort(scene)
@@ -455,10 +455,9 @@ class BicepsApp(AppHooks):
 
     def action_turn_in_view(self, yaw: float, pitch: float) -> None:
         # A key that no priority binding takes goes from the app to the focused widget, up
-        # through its parents and back to the app before the app's binding runs: about
-        # 0.2 ms of Textual's, for each of the dozens of keys a second a held arrow sends
-        # (the UI thread's 2.3 -> 1.9 ms a frame at 200x60 and 120 keys a second, the
-        # app's CPU 29-30 -> 24-26 %). While the picture has the focus nothing on
+        # through its parents and back to the app before the app's binding runs: Textual's
+        # work for each of the dozens of keys a second a held arrow sends, a good part of
+        # the UI thread's frame. While the picture has the focus nothing on
         # that way takes the arrows, so they are taken at once; anywhere else (the node
         # table, a dialog's input) check_action turns this binding off and they go their
         # way as before.

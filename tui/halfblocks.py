@@ -77,7 +77,7 @@ class TextCells:
         # A turning model makes a few hundred new cells a frame: their colours are mostly
         # ones seen before, so those are kept apart, and the style is made with
         # Style.from_color, which skips the parsing of Style(): the same style, equal and
-        # with the same codes, in a tenth of the time.
+        # with the same codes, for much less work.
         self._colours = _Made(colour)
         self._styles = _Made(self._style)
         self._codes = _Made(lambda cell: codes(self._styles[cell], color_system))
