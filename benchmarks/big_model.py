@@ -132,7 +132,7 @@ async def one_run(config: Path, size: tuple[int, int]) -> dict[str, list[float]]
         for key, doing in KEYS:
             await _calm(app, viewport)
             heartbeat.reset()
-            shown, arm = viewport._shown, app.scene.arm
+            shown, arm = viewport._frames.shown, app.scene.arm
             pressed = time.perf_counter()
             _press(app, key)
             # Answered: the screen sent after the key, and after its numbers if it edited.
@@ -144,7 +144,7 @@ async def one_run(config: Path, size: tuple[int, int]) -> dict[str, list[float]]
             figures[f"{key} ({doing}): answered ms"] = [answered]
             figures[f"{key} ({doing}): loop stalled ms"] = [heartbeat.longest * 1000]
             if key in "cCxX":  # (benchmarks may peek: the number of the frame on screen)
-                await _until(lambda: viewport._shown > shown and viewport.up_to_date)
+                await _until(lambda: viewport._frames.shown > shown and viewport.up_to_date)
                 figures[f"{key} ({doing}): picture ms"] = [(time.perf_counter() - pressed) * 1000]
         await _calm(app, viewport)
         figures.update(await held_key(app, viewport, heartbeat))
@@ -163,7 +163,7 @@ async def held_key(app: Timed, viewport: Viewport, heartbeat: Heartbeat) -> dict
 
     table.show = noted  # type: ignore[method-assign]
     target = round(app.scene.arm.length - HELD * 0.1, 6)
-    shown = viewport._shown  # the number of the frame on screen (benchmarks may peek)
+    shown = viewport._frames.shown  # the number of the frame on screen (benchmarks may peek)
     heartbeat.reset()
     start = time.perf_counter()
     for number in range(HELD):
@@ -174,7 +174,7 @@ async def held_key(app: Timed, viewport: Viewport, heartbeat: Heartbeat) -> dict
     await _until(lambda: updates and updates[-1][1] == target
                  and app.displayed > max(updates[-1][0], last))
     numbers = time.perf_counter() - last
-    await _until(lambda: viewport._shown > shown and viewport.up_to_date
+    await _until(lambda: viewport._frames.shown > shown and viewport.up_to_date
                  and app.scene.arm.length == target)
     picture = time.perf_counter() - last
     return {

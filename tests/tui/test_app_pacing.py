@@ -11,7 +11,7 @@ from textual import events
 from textual.constants import MAX_FPS
 
 import biceps.tui.pacing
-import biceps.tui.widgets.viewport
+import biceps.tui.rendering
 from biceps.cli import main
 from biceps.engine.scene import SceneRenderer
 from biceps.tui.app import BicepsApp
@@ -290,7 +290,7 @@ async def test_a_frame_drawn_ahead_too_long_ago_is_drawn_again_from_the_newest_s
         private_path, config, monkeypatch, stale_after, first_shown):
     # Over a slow link the answer takes a while: by then the frame drawn ahead is old, and
     # if the keys have moved on since, it would show them that late.
-    monkeypatch.setattr(biceps.tui.widgets.viewport, "STALE_AFTER", stale_after)
+    monkeypatch.setattr(biceps.tui.rendering, "STALE_AFTER", stale_after)
     draws = Draws(monkeypatch)
     app = BicepsApp(config)
     terminal = Terminal(app)

@@ -27,7 +27,7 @@ def render_sizes(monkeypatch) -> list[tuple[int, int]]:
             sizes.append((width, height))
             return super().render(scene, width, height, framed, pixel_aspect)
 
-    monkeypatch.setattr("biceps.tui.widgets.viewport.SceneRenderer", RecordingRenderer)
+    monkeypatch.setattr("biceps.tui.rendering.SceneRenderer", RecordingRenderer)
     return sizes
 
 

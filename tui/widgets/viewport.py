@@ -3,20 +3,15 @@
 
 A widget of ``w x h`` cells shows a frame of ``w x h`` times the encoder's pixels per cell
 (half-blocks: ``w x 2h``, as cells are about twice as tall as wide, so the pixels are about
-square). One worker thread owns a :class:`~engine.scene.SceneRenderer` and serves requests
-through a :class:`LatestOnly` hand-over: however fast keys repeat or the mouse drags, it
-renders only the newest scene. It also has the encoder turn the frame into lines (and an
-image, for an encoder that sends one), and a new frame refreshes only the lines that
-changed (none, if the picture is the same). The captions on the border say how the picture
-on screen was made, so they change with it.
+square). The frames are drawn, encoded into lines (and an image, for an encoder that sends
+one) and paced apart from Textual (``tui/rendering.py``), on a worker thread of the
+widget's; a new frame refreshes only the lines that changed (none, if the picture is the
+same). The captions on the border say how the picture on screen was made, so they change
+with it.
 
 Until the first frame comes on a first run (an empty numba cache, ``tui/ahead.py``), the
 picture's place says that the renderer is being prepared, with the parts done and the
 seconds so far; the keys work meanwhile.
-
-A frame is handed to the UI only when the :class:`~tui.pacing.Pacer` says the terminal has
-taken the last one; meanwhile the worker draws the next (the newest request), so that only
-its encoding is left to do once the terminal has answered (see `STALE_AFTER`).
 
 The viewport writes a frame's new lines to the terminal itself, framed in its border, as
 Textual would write them, whenever nothing else is drawn over it (:meth:`Viewport._wrote`);
@@ -33,11 +28,9 @@ changes, and written again when Textual has repainted cells under it
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from time import monotonic
 from typing import Sequence
 
-import numpy as np
 from rich.color import Color
 from rich.console import Console
 from rich.segment import Segment
@@ -51,55 +44,27 @@ from textual.timer import Timer
 from textual.widget import Widget
 
 from biceps.engine.config import rgb
-from biceps.engine.scene import Scene, SceneRenderer, supersampling
+from biceps.engine.scene import Scene, supersampling
 from biceps.terminal.palette import Palette256, background_colour
 from biceps.terminal.palette import colour as palette_colour
 from biceps.tui.ahead import Preparation, preparing
 from biceps.tui.encoder import Picture, PictureEncoder
 from biceps.tui.halfblocks import HalfBlocks, TextCells
-from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer
 from biceps.tui.pixels import ImageEncoder
 from biceps.tui import textual_private as private
 from biceps.tui.prerendered import console_system
+from biceps.tui.rendering import BUSY_AFTER, Failed, Frames, Rendered
 
 
 MESSAGE = Style(color="#b8b8b8")  # the first run's message, on the picture's background
 DRAW_TRIES = 8  # refreshes to wait for a frame to be written before pacing on regardless
 
-BUSY_AFTER = 0.3
-"""Seconds without a new frame, while one is wanted, before the caption says the picture is
-being drawn: a first Phong frame compiles its kernels, a muscle of many nodes takes long."""
 BUSY_CAPTION = "drawing…"
 
 PREPARING_EVERY = 0.5
 """Seconds between updates of a first run's message (``tui/ahead.py``), until the first
 picture comes: the parts of the compilation done, and the seconds it has taken so far."""
-
-STALE_AFTER = 2 / 60
-"""Seconds after which a frame drawn ahead is drawn again if a newer scene is waiting by
-the time the terminal has taken the last frame. A frame waits up to one of Textual's
-updates (a 60th of a second) to be written, and a local terminal answers within a
-millisecond or two: its frames drawn ahead are shown as drawn. Over a slow link the answer
-takes as long as the frame takes to cross it (75 ms for 47 KB at 5 Mbit/s), and a frame
-drawn that long ago would show the keys that late."""
-
-
-@dataclass(frozen=True)
-class _Request:
-    number: int
-    scene: Scene
-    width: int  # pixels
-    height: int  # pixels
-    aspect: float  # a pixel's width over its height on the screen
-
-
-@dataclass(frozen=True)
-class _Drawn:
-    request: _Request
-    frame: np.ndarray | Exception  # (h, w, 3) uint8, or what stopped it being drawn
-    at: float  # monotonic seconds
-
 
 class Viewport(Widget, can_focus=True):
     """Shows a :class:`Scene`; drags and wheel turns become messages for the app to act on."""
@@ -107,18 +72,14 @@ class Viewport(Widget, can_focus=True):
     ALLOW_SELECT = False  # a drag turns the model; it does not select text
 
     class FrameRendered(Message, bubble=False):
-        def __init__(self, number: int, scene: Scene, picture: Picture, height: int) -> None:
+        def __init__(self, frame: Rendered[Picture]) -> None:
             super().__init__()
-            self.number = number
-            self.scene = scene
-            self.picture = picture
-            self.height = height  # pixels
+            self.frame = frame
 
     class RenderFailed(Message, bubble=False):
-        def __init__(self, number: int, reason: str) -> None:
+        def __init__(self, failure: Failed) -> None:
             super().__init__()
-            self.number = number
-            self.reason = reason
+            self.failure = failure
 
     class Dragged(Message):
         """The mouse moved with a button held; ``pan`` to move the model, else to turn it.
@@ -145,22 +106,19 @@ class Viewport(Widget, can_focus=True):
         """``pacer`` says when the next frame may be made; ``encoder`` puts frames on the
         terminal (default: :class:`HalfBlocks`), from the render thread."""
         super().__init__(id=id)
-        self._pacer = pacer
         encoder = HalfBlocks() if encoder is None else encoder
         # Text in a 256-colour terminal: every frame mapped onto its palette as a whole
         # (terminal/palette.py), where Textual would map each colour on its own. The lines
         # carry their text for this terminal's colours.
-        self._palette: Palette256 | None = None
+        palette: Palette256 | None = None
         system = console_system(self.app.console)
         if isinstance(encoder, TextCells) and system == "256":
-            self._palette, encoder = Palette256(), encoder.recoloured(palette_colour, system)
+            palette, encoder = Palette256(), encoder.recoloured(palette_colour, system)
         elif isinstance(encoder, TextCells) and system != "truecolor":
             encoder = encoder.recoloured(color_system=system)
-        self._encoder = encoder
+        self._palette, self._encoder = palette, encoder
+        self._frames: Frames[Picture] = Frames(encoder, pacer, palette)
         self._scene: Scene | None = None
-        self._requests: LatestOnly[_Request] = LatestOnly()
-        self._requested = 0  # the number of the newest request
-        self._shown = 0  # the number of the request whose frame is on screen
         self._strips: list[Strip] = []
         # For each line of the picture, framed in the border's sides: (line, sides, framed).
         self._framed_lines: dict[int, tuple[Strip, tuple[Strip, Strip], Strip]] = {}
@@ -176,14 +134,13 @@ class Viewport(Widget, can_focus=True):
         # The border row of the caption being set, and whether it is written with the
         # frame (see refresh).
         self._captioning: tuple[Region, bool] | None = None
-        self._progress_at = 0.0  # when the last frame came, or the wait for one began
         self._progress_timer: Timer | None = None
         self._preparing_timer: Timer | None = None
 
     @property
     def up_to_date(self) -> bool:
         """Whether the frame on screen is that of the latest scene and size."""
-        return self._shown == self._requested
+        return self._frames.up_to_date
 
     def show(self, scene: Scene) -> None:
         self._scene = scene
@@ -206,7 +163,7 @@ class Viewport(Widget, can_focus=True):
         self.refresh()  # the message's progress, or the picture that replaced it
 
     def on_unmount(self) -> None:
-        self._requests.close()
+        self._frames.close()
         self._write(self._encoder.clear())
 
     def on_resize(self) -> None:
@@ -236,11 +193,8 @@ class Viewport(Widget, can_focus=True):
         if self._scene is None or not width or not height:
             return
         cell = self._encoder.cell
-        if self.up_to_date:
-            self._progress_at = monotonic()
-        self._requested += 1
-        self._requests.put(_Request(self._requested, self._scene, width * cell.width,
-                                    height * cell.height, self._encoder.aspect))
+        self._frames.request(self._scene, width * cell.width, height * cell.height,
+                             self._encoder.aspect)
         self._watch_progress()
 
     def _watch_progress(self) -> None:
@@ -251,67 +205,31 @@ class Viewport(Widget, can_focus=True):
         self._progress_timer = None
         if self.up_to_date:
             return
-        if monotonic() - self._progress_at >= BUSY_AFTER:
+        if self._frames.busy():
             self._caption(self._frame_captions[0], BUSY_CAPTION)  # until the next frame
         self._watch_progress()
 
     @work(thread=True, exclusive=True, group="render")
     def _render_frames(self) -> None:
-        # Both keep what they need from one frame to the next (buffers, the lines on
-        # screen), so they are this thread's own (see PictureEncoder for the exceptions).
-        renderer, encoder = SceneRenderer(), self._encoder
-        request = self._requests.take()
-        while request is not None:
-            # Drawn ahead, while the UI waits for the terminal to take the last frame: once
-            # it has, the next is only encoded (every encoded frame is shown, in order: the
-            # encoder sends the rows that changed since the last), not drawn too.
-            drawn = self._drawn(renderer, request)
-            if not self._requests.hand_over():
-                return
-            if (monotonic() - drawn.at > STALE_AFTER
-                    and (newer := self._requests.newer()) is not None):
-                drawn = self._drawn(renderer, newer)
-            self.post_message(self._encoded(encoder, drawn))
-            request = self._requests.take()
+        self._frames.serve(self._deliver)
 
-    def _drawn(self, renderer: SceneRenderer, request: _Request) -> _Drawn:
-        """The frame of ``request``, valid until ``renderer`` draws again, or the error
-        that stopped it."""
-        try:
-            frame = renderer.render(request.scene, request.width, request.height,
-                                    pixel_aspect=request.aspect)
-            if self._palette is not None:
-                frame = self._palette.mapped(frame, rgb(request.scene.render.background))
-        except Exception as error:
-            return _Drawn(request, error, monotonic())
-        return _Drawn(request, frame, monotonic())
-
-    def _encoded(self, encoder: PictureEncoder, drawn: _Drawn) -> Message:
-        request, frame = drawn.request, drawn.frame
-        try:
-            if isinstance(frame, Exception):
-                raise frame
-            return self.FrameRendered(request.number, request.scene, encoder.encode(frame),
-                                      request.height)
-        except Exception as error:
-            # Whatever goes wrong in one frame, the app and the edits must survive it,
-            # and the next scene may well render: report it and carry on. The encoder
-            # may have failed halfway, so what it kept no longer matches the screen.
-            encoder.reset()
-            return self.RenderFailed(request.number, f"{type(error).__name__}: {error}")
+    def _deliver(self, result: Rendered[Picture] | Failed) -> None:
+        # On the render thread: to the UI's, as a message.
+        self.post_message(self.FrameRendered(result) if isinstance(result, Rendered)
+                          else self.RenderFailed(result))
 
     def on_viewport_frame_rendered(self, message: FrameRendered) -> None:
-        picture = message.picture
+        frame = message.frame
+        picture = frame.picture
+        self._frames.arrived(frame)
         self._strips = picture.strips
         self._image = picture.image
         self._latest_image = picture.image
         self._latest_size = Size(picture.strips[0].cell_length if picture.strips else 0,
                                  len(picture.strips))
-        self._shown = message.number
-        self._progress_at = monotonic()
-        self._frame_captions = _view_captions(message.scene, message.height)
+        self._frame_captions = _view_captions(frame.scene, frame.height)
         if self._wrote(picture.changed):
-            self._pacer.after_frame(self._requests.done)
+            self._frames.written()
             return
         if picture.changed:  # (no regions would mean all of them)
             self.refresh(*(self._rows(y, rows) for y, rows in picture.changed))
@@ -370,7 +288,7 @@ class Viewport(Widget, can_focus=True):
             if self._on_top and self._latest_size == self.size:
                 self._write_image(self._image)
         self._image = ""
-        self._pacer.after_frame(self._requests.done)
+        self._frames.written()
 
     @property
     def _on_top(self) -> bool:
@@ -392,12 +310,10 @@ class Viewport(Widget, can_focus=True):
         private.write(self.app, text)
 
     def on_viewport_render_failed(self, message: RenderFailed) -> None:
-        self._requests.done()
-        self._shown = message.number
-        self._progress_at = monotonic()
+        self._frames.arrived(message.failure)
         self._caption(*self._frame_captions)
-        self.notify(f"The picture cannot be drawn: {message.reason}", severity="error",
-                    markup=False)
+        self.notify(f"The picture cannot be drawn: {message.failure.reason}",
+                    severity="error", markup=False)
 
     def _caption(self, title: str, subtitle: str, written: bool = False) -> list[int]:
         """Set the captions on the border; the rows that changed (``-1`` the top border,
