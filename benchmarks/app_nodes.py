@@ -103,7 +103,8 @@ def frame_cost(nodes: int) -> tuple[float, float]:
     biceps.engine.muscle.NODES = max(nodes, biceps.engine.muscle.NODES)
     from biceps.engine.arm import Arm
     from biceps.engine.muscle import Muscle
-    from biceps.engine.scene import Scene, SceneRenderer
+    from biceps.engine.scene import Scene
+    from biceps.engine.scene_renderer import SceneRenderer
     from biceps.engine.settings import RenderSettings, View
     from biceps.engine.skeleton import Skeleton
     from biceps.engine.transforms import Light

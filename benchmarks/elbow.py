@@ -65,7 +65,7 @@ def timed(call) -> tuple[float, float]:
 
 
 def in_process(path: Path) -> tuple[float, float]:
-    from biceps.engine.scene import SceneRenderer
+    from biceps.engine.scene_renderer import SceneRenderer
 
     scene = posed(path)
     return timed(lambda: SceneRenderer().render(scene, *SIZE))
@@ -83,7 +83,7 @@ class Sweep:
     """One renderer drawing the model at a new flexion each call (50 to 69 degrees, round)."""
 
     def __init__(self, path: Path) -> None:
-        from biceps.engine.scene import SceneRenderer
+        from biceps.engine.scene_renderer import SceneRenderer
 
         self.scene, self.renderer, self.calls = posed(path), SceneRenderer(), 0
 
@@ -98,7 +98,7 @@ class Turn:
     """One renderer drawing the same pose, turned a degree further each call."""
 
     def __init__(self, path: Path) -> None:
-        from biceps.engine.scene import SceneRenderer
+        from biceps.engine.scene_renderer import SceneRenderer
 
         self.scene, self.renderer, self.calls = posed(path), SceneRenderer(), 0
         self.renderer.render(self.scene, *SIZE)
@@ -113,8 +113,8 @@ def step(path: Path) -> tuple[tuple[float, float], tuple[float, float]]:
     """The pose's meshes after a contraction step, and the share inside engine/clearance.py,
     each (wall, CPU) seconds."""
     from biceps.engine import packing
+    from biceps.engine.appearance import scene_mesh
     from biceps.engine.config import load_config
-    from biceps.engine.scene import scene_mesh
 
     config = load_config(path)
     arm = config.arm.at_flexion(FLEXION)

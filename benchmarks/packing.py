@@ -26,8 +26,8 @@ STEPS = 15
 def measure() -> dict[str, float]:
     """One run here: {what model: median ms} for a step and for an edit's first mesh."""
     from biceps.configs import FOLDER
+    from biceps.engine.appearance import scene_mesh
     from biceps.engine.config import load_config
-    from biceps.engine.scene import scene_mesh
 
     figures = {}
     for name in MODELS:

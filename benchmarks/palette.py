@@ -38,7 +38,8 @@ import json, sys, time
 import numpy as np
 from biceps.configs import FOLDER
 from biceps.engine.config import load_config, rgb
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.terminal.palette import Palette256
 
 configs, sizes, views, out = *map(json.loads, sys.argv[1:4]), sys.argv[4]

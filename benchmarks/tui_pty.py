@@ -352,7 +352,8 @@ def run_rich_pixels_app(config: Path) -> None:
     from textual.widgets import Static
 
     from biceps.engine.config import load_config
-    from biceps.engine.scene import Scene, SceneRenderer
+    from biceps.engine.scene import Scene
+    from biceps.engine.scene_renderer import SceneRenderer
     from biceps.tui.changes import turned
 
     class RichPixelsApp(App[None]):

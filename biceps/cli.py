@@ -685,7 +685,7 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
     """
     from biceps.engine.cost import check_picture
     from biceps.engine.export import check_writable, write_png
-    from biceps.engine.scene import SMALL_PICTURE, SceneRenderer, supersampling
+    from biceps.engine.scene_renderer import SMALL_PICTURE, SceneRenderer, supersampling
 
     if printed is not None and output is not None:
         raise click.UsageError(f"give -o FILE.png or --{printed}, not both: a picture goes "

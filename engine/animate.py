@@ -17,7 +17,8 @@ import numpy as np
 from biceps.engine.cost import check_frames, check_picture
 from biceps.engine.errors import BicepsError
 from biceps.engine.movie import Progress
-from biceps.engine.scene import Scene, SceneRenderer, supersampling
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer, supersampling
 
 
 @dataclass(frozen=True)

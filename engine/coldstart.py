@@ -16,7 +16,7 @@ Everything about it is here; the rest of the program makes a few calls:
   (:func:`compile_rasterizer_aside`); the app then probes the cache and, if it is cold,
   gives the rest of a frame's kernels to another child and what it can do without until
   after the first picture to :func:`compile_later` (``tui/ahead.py``). Every
-  :class:`~biceps.engine.scene.SceneRenderer` calls :func:`wait_for_aside` before its
+  :class:`~biceps.engine.scene_renderer.SceneRenderer` calls :func:`wait_for_aside` before its
   first frame, so the render thread loads what the children compiled instead of compiling
   it again beside them.
 """
@@ -185,22 +185,22 @@ def compile_rasterizer_aside(shading: str) -> Aside | None:
 
 def prepare_outline() -> None:
     """Compile, or load from the cache, the kernel that outlines a mesh for framing
-    (``engine/scene.py``'s outline), on arrays of the kinds a frame passes it: the
+    (``engine/framing.py``'s outline), on arrays of the kinds a frame passes it: the
     smallest of a frame's kernels, a tenth of a second cold (the app's probe of the cache,
     ``tui/ahead.py``)."""
     import numpy as np
 
-    from biceps.engine.scene import outline
+    from biceps.engine.framing import outline
 
     outline(np.zeros((1, 3)))
 
 
 def prepare_framing() -> None:
     """:func:`prepare_outline`, and the kernel that aims the camera at the outline
-    (``engine/scene.py``'s fit_points)."""
+    (``engine/framing.py``'s fit_points)."""
     import numpy as np
 
-    from biceps.engine.scene import fit_points
+    from biceps.engine.framing import fit_points
 
     prepare_outline()
     fit_points(np.zeros((1, 3)), 1.0)

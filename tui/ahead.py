@@ -29,7 +29,7 @@ from textual.driver import Driver
 
 from biceps.engine import coldstart
 from biceps.engine.config import Config
-from biceps.engine.scene import supersampling
+from biceps.engine.scene_renderer import supersampling
 from biceps.tui.encoder import PictureEncoder
 from biceps.terminal.palette import Palette256
 from biceps.tui.sgr import lean, minimized
@@ -74,7 +74,7 @@ def compile_ahead(config: Config, encoder: PictureEncoder, palette: bool = False
     if coldstart.stop_aside_if_cached(coldstart.prepare_outline):
         return  # this process loads the kernels as it goes, in milliseconds
     # A frame of one cell: so small that it is supersampled, as the app's first most
-    # likely is (engine/scene.py).
+    # likely is (engine/scene_renderer.py).
     shading = config.render.shading
     ssaa = supersampling(config.render, encoder.cell.height)
     coldstart.compile_aside(

@@ -40,7 +40,8 @@ from biceps.engine.export import check_writable, parse_size, write_png
 from biceps.engine.files import same_file
 from biceps.engine.hold import Effort, effort
 from biceps.engine.names import printable
-from biceps.engine.scene import Scene, SceneRenderer, supersampling
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer, supersampling
 from biceps.engine.settings import ColourBy
 from biceps.terminal import detect
 from biceps.terminal.choose import TEXT, choose, colours, notice

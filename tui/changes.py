@@ -69,7 +69,7 @@ def zoomed(scene: Scene, steps: float) -> Scene:
 
 def fitted(scene: Scene) -> Scene:
     """The view at scale 1 and unmoved, however it is turned: the camera then fits the arm,
-    as posed, to the picture (``engine/scene.py``)."""
+    as posed, to the picture (``engine/framing.py``)."""
     return scene.with_view(scale=1.0, offset=(0.0, 0.0, 0.0))
 
 

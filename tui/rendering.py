@@ -3,7 +3,7 @@ a render thread, handed over newest only, and paced by the terminal.
 
 The UI asks for a frame of a scene at a size (:meth:`Frames.request`) as often as keys
 repeat or the mouse drags. One render thread (:meth:`Frames.serve`) owns a
-:class:`~engine.scene.SceneRenderer` and serves the requests through a
+:class:`~engine.scene_renderer.SceneRenderer` and serves the requests through a
 :class:`~tui.latest_only.LatestOnly` hand-over: it renders only the newest scene, and has
 the encoder (``tui/encoder.py``) turn the frame into what the terminal is sent.
 
@@ -22,7 +22,8 @@ from typing import Any, Callable, Generic, Protocol, TypeVar
 import numpy as np
 
 from biceps.engine.config import rgb
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.terminal.palette import Palette256
 from biceps.tui.latest_only import LatestOnly
 from biceps.tui.pacing import Pacer

@@ -15,7 +15,8 @@ from PIL import Image
 
 from biceps.cli import main
 from biceps.engine.config import DEFAULT_CONFIG, load_config
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.terminal import detect, printed
 from biceps.terminal.cells import SEXTANTS
 from biceps.tui.halfblocks import HalfBlocks, TextCells

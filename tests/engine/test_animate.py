@@ -6,7 +6,8 @@ import pytest
 from biceps.engine.animate import FlexCycle, check_cycle, render_cycle
 from biceps.engine.config import BUNDLED, DEFAULT_CONFIG, load_config, rgb
 from biceps.engine.errors import BicepsError
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 
 SCENE = Scene.of(load_config(DEFAULT_CONFIG))
 

@@ -4,12 +4,14 @@ import numpy as np
 import pytest
 
 from biceps.engine import raster
+from biceps.engine.appearance import scene_mesh
 from biceps.engine.config import DEFAULT_CONFIG, load_config
 from biceps.engine.errors import SettingError
+from biceps.engine.framing import outline, view_camera, zoomed_light
 from biceps.engine.raster.bands import Bands, default_threads
 from biceps.engine.render import Renderer
-from biceps.engine.scene import (Scene, outline, scene_mesh, supersampling, view_camera,
-                                 zoomed_light)
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import supersampling
 from biceps.engine.settings import THREADS_VARIABLE
 from biceps.engine.transforms import Camera, Light
 

@@ -9,7 +9,10 @@ import pytest
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config, rgb
 from framing import arm_mask, assert_fills_the_view
-from biceps.engine.scene import Scene, SceneRenderer, fit_points, scene_mesh, view_camera
+from biceps.engine.appearance import scene_mesh
+from biceps.engine.framing import fit_points, view_camera
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.engine.transforms import transform_points
 
 

@@ -13,7 +13,8 @@ from PIL import Image
 
 from biceps.engine.config import load_config, rgb
 from biceps.engine.export import write_png
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.engine.config import DEFAULT_CONFIG
 from pictures import pieces
 

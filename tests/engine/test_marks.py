@@ -7,10 +7,12 @@ import numpy as np
 import pytest
 
 from biceps.configs import FOLDER
-from biceps.engine import scene as scene_module
+from biceps.engine import scene_renderer
 from biceps.engine.anatomy import node_places
+from biceps.engine.appearance import RING_COLOUR, marked_albedo, scene_mesh
 from biceps.engine.config import DEFAULT_CONFIG, load_config
-from biceps.engine.scene import RING_COLOUR, Scene, SceneRenderer, marked_albedo, scene_mesh
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 
 
 @pytest.fixture(scope="module")
@@ -69,7 +71,7 @@ def test_a_node_past_the_muscle_s_last_marks_no_ring(elbow):
 
 def test_the_renderer_draws_the_marks_only_for_a_marked_scene(elbow, monkeypatch):
     built = []
-    monkeypatch.setattr(scene_module, "scene_mesh",
+    monkeypatch.setattr(scene_renderer, "scene_mesh",
                         lambda *args: built.append(args) or scene_mesh(*args))
     renderer = SceneRenderer()
     plain = renderer.render(elbow, 160, 120).copy()

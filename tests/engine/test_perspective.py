@@ -12,10 +12,12 @@ import math
 import numpy as np
 import pytest
 
+from biceps.engine.appearance import scene_mesh
 from biceps.engine.config import DEFAULT_CONFIG, load_config
+from biceps.engine.framing import outline, view_camera, zoomed_light
 from biceps.engine.mesh import cylinder_mesh
 from biceps.engine.render import Renderer
-from biceps.engine.scene import Scene, outline, scene_mesh, view_camera, zoomed_light
+from biceps.engine.scene import Scene
 from biceps.engine.transforms import Camera, Light
 
 SIZE = (160, 120)

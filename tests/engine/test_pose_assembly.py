@@ -9,9 +9,9 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from biceps.engine.anatomy import arm_parts, tendon_share
+from biceps.engine.appearance import companion_segments, scene_mesh, strain_colour
 from biceps.engine.config import load_config, rgb
 from biceps.engine.mesh import _lengths, _spokes, _spokes_along
-from biceps.engine.scene import companion_segments, scene_mesh, strain_colour
 
 ELBOW = load_config(Path(__file__).resolve().parents[2] / "configs" / "elbow.toml")
 

@@ -8,11 +8,12 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from biceps.configs import FOLDER
+from biceps.engine.anatomy import arm_parts
+from biceps.engine.appearance import (activation_colour, companion_segments, marked_albedo,
+                                      scene_mesh)
 from biceps.engine.config import load_config
 from biceps.engine.muscle import volume
-from biceps.engine.anatomy import arm_parts
-from biceps.engine.scene import (Scene, activation_colour, companion_segments, marked_albedo,
-                                 scene_mesh)
+from biceps.engine.scene import Scene
 from biceps.engine.tension import tensed, tensed_arm
 
 ELBOW = load_config(FOLDER / "elbow.toml")

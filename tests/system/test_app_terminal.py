@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 from biceps.engine.config import load_config
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.tui.changes import TURN_STEP
 from pty_app import UPPER_HALF, first_picture, shown_after
 from vt import Screen

@@ -15,7 +15,8 @@ from PIL import Image
 
 from biceps.engine import coldstart
 from biceps.engine.config import DEFAULT_CONFIG, load_config
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -28,7 +29,8 @@ from numba.core.registry import CPUDispatcher
 from biceps.engine import raster
 from biceps.engine.config import load_config
 from biceps.engine.render import Renderer
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 
 modules = [import_module(f"{raster.__name__}.{module.name}")
            for module in pkgutil.iter_modules(raster.__path__)]
@@ -80,7 +82,8 @@ import json, sys
 from numba.core import event
 from biceps.engine.coldstart import prepare_kernels
 from biceps.engine.config import load_config
-from biceps.engine.scene import Scene, SceneRenderer, supersampling
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer, supersampling
 
 scene = Scene.of(load_config(sys.argv[1]))
 prepare_kernels(scene.render.shading, supersampling(scene.render, 54))
@@ -104,7 +107,8 @@ import json, sys
 from numba.core import event
 from biceps.engine import coldstart
 from biceps.engine.config import load_config
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.tui import ahead
 from biceps.tui.halfblocks import HalfBlocks
 from biceps.tui.sgr import minimized

@@ -39,7 +39,8 @@ import pytest
 from PIL import Image
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config, rgb
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.terminal.cells import SHAPES, CellRows
 from biceps.terminal.palette import Palette256
 from pictures import cell_pixels

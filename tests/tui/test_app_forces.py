@@ -177,7 +177,7 @@ async def test_b_colours_by_activation_and_the_active_bellies_are_tensed(biceps,
         await pilot.press(*">" * 10)
         await settled(session)
         assert app.scene.activations == (1.0,) * 6
-        from biceps.engine.scene import SceneRenderer
+        from biceps.engine.scene_renderer import SceneRenderer
 
         picture = SceneRenderer().render(app.scene, 160, 90).astype(int)
         red = (picture[..., 0] > 150) & (picture[..., 1] < 60) & (picture[..., 2] < 60)

@@ -11,7 +11,7 @@ from textual.widgets import Input
 
 from biceps.configs import FOLDER
 from biceps.engine.config import load_config
-from biceps.engine.scene import SceneRenderer
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.tui.commands import KeyCommands
 from biceps.tui.screens.prompt import Prompt
 from biceps.tui.widgets.node_table import NodeTable

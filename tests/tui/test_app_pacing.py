@@ -13,7 +13,7 @@ from textual.constants import MAX_FPS
 import biceps.tui.pacing
 import biceps.tui.rendering
 from biceps.cli import main
-from biceps.engine.scene import SceneRenderer
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.tui.app import BicepsApp
 from biceps.tui.changes import TURN_STEP
 from biceps.tui.pacing import LoopTimer, Pacer, cursor_question

@@ -11,7 +11,8 @@ from rich._palettes import EIGHT_BIT_PALETTE
 from rich.color import Color, ColorSystem, ColorType
 
 from biceps.engine.config import rgb
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.terminal.palette import COLOURS, FIRST, Palette256, colour, nearest, oklab
 from biceps.tui.widgets.viewport import Viewport
 from colours import blurred_difference, off_hue_share

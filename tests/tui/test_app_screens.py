@@ -7,7 +7,7 @@ from textual.binding import Binding
 from textual.widgets import RichLog, Static
 
 from biceps.engine.config import rgb
-from biceps.engine.scene import SceneRenderer
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.tui.app import BicepsApp
 from biceps.tui.commands import KeyCommands
 from biceps.tui.screens.help import HelpScreen

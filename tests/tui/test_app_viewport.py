@@ -10,7 +10,7 @@ import pytest
 
 from textual._compositor import ChopsUpdate
 
-from biceps.engine.scene import SceneRenderer
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.tui.app import BicepsApp
 from biceps.tui.widgets.viewport import Viewport
 from vt import Screen

@@ -19,7 +19,8 @@ from rich.style import Style
 from textual.geometry import Size
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.terminal import kitty
 from biceps.tui.pixels import ItermImages, KittyGraphics, KittyPlaceholders, Sixel
 from biceps.terminal.sixel import quantised, sixel_image

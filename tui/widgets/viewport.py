@@ -44,7 +44,8 @@ from textual.timer import Timer
 from textual.widget import Widget
 
 from biceps.engine.config import rgb
-from biceps.engine.scene import Scene, supersampling
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import supersampling
 from biceps.terminal.palette import Palette256, background_colour
 from biceps.terminal.palette import colour as palette_colour
 from biceps.tui.ahead import Preparation, preparing
