@@ -1,6 +1,6 @@
 """Scenes drawn: the supersampling a picture gets, and a renderer that keeps the last
-scene's mesh, colours and outline for the frames that follow (only turning, moving or
-relighting the model, the common case, rebuilds nothing).
+scene's mesh, colours and outline, so that frames that only turn, move or relight the
+model rebuild none of them.
 """
 
 from __future__ import annotations
