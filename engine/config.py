@@ -20,31 +20,26 @@ from typing import Annotated, Any, Callable, Literal, get_args, get_origin
 
 import numpy as np
 import tomlkit
-from pydantic import BaseModel, ConfigDict, Field, PlainValidator, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from biceps.configs import DEFAULT as DEFAULT_CONFIG, FOLDER as BUNDLED
 from biceps.engine.arm import Arm
 from biceps.engine.arm26_forces import CURVES, PARAMETERS, default_parameters
 from biceps.engine.bounds import (
-    ANGLE,
     BONE,
-    COORDINATE,
     FIBRE,
     FORCE,
     GROWTH,
     LEAST_ACTIVATION,
     PENNATION,
     RADIUS,
-    SCALE,
     SHAPE,
     STRAIN,
     Limits,
     OutOfBounds,
     cm,
     exactly,
-    finite,
     quoted,
-    whole,
 )
 from biceps.engine.companion import Companion, reach_problem
 from biceps.engine.cost import model_problem
@@ -53,44 +48,20 @@ from biceps.engine.files import read_regular_file, same_file, write_atomically
 from biceps.engine.hill import HillParameters
 from biceps.engine.muscle import Muscle, VolumeMode
 from biceps.engine.names import printable
-from biceps.engine.settings import (
-    COLOUR,
-    Colors,
-    ColourBy,
-    FIELD_OF_VIEW,
-    Graphics,
-    SEGMENTS,
-    SUPERSAMPLING,
-    RenderSettings,
-    Shading,
-    View,
-)
+from biceps.engine.settings import (IN_A_FILE, Colour, Coordinate, Point, RenderSettings, View,
+                                    number)
 from biceps.engine import arm26
 from biceps.engine.path import MusclePath, PathDrive, ViaPath, Wrap, WrapSide
 from biceps.engine.skeleton import (Attachment, Skeleton, SkeletonModel, attachment_problem,
                                     skeleton_problem)
-from biceps.engine.transforms import FRACTION, SHININESS, Light
+from biceps.engine.transforms import Light
 
 
-def _number(limits: Limits | None = None) -> Any:
-    # The runtime values' own rule (engine/bounds.py), so that a file and a dialog refuse
-    # the same numbers in the same words. Strict: "1.5" is not a number and true is not 1.
-    return PlainValidator(lambda value: finite(value, limits))
-
-
-def _whole(limits: Limits) -> Any:
-    return PlainValidator(lambda value: whole(value, limits))
-
-
-Positive = Annotated[float, _number(Limits(0, exclusive=True, unit=" cm"))]
-Degrees = Annotated[float, _number(Limits(0, 180, unit=" degrees"))]
-Angle = Annotated[float, _number(ANGLE)]
-Radius = Annotated[float, _number(RADIUS)]
-Growth = Annotated[float, _number(GROWTH)]
-Bone = Annotated[float, _number(BONE)]
-Coordinate = Annotated[float, _number(COORDINATE)]
-Vector = tuple[Coordinate, Coordinate, Coordinate]
-Colour = Annotated[str, Field(pattern=f"^{COLOUR}$")]
+Positive = Annotated[float, number(Limits(0, exclusive=True, unit=" cm"))]
+Degrees = Annotated[float, number(Limits(0, 180, unit=" degrees"))]
+Radius = Annotated[float, number(RADIUS)]
+Growth = Annotated[float, number(GROWTH)]
+Bone = Annotated[float, number(BONE)]
 MuscleName = Annotated[str, Field(pattern=r"^[A-Za-z0-9_\-]{1,40}$")]
 
 COMPANION_COLOURS = ("#c8705a", "#a8503a", "#5a7fb4", "#4a6a9a", "#6a8ac8")
@@ -178,8 +149,8 @@ class CompanionTable(_ProfileTable):
     and on which side, and its colour."""
 
     path: PathName | None = None
-    origin: Vector | None = None
-    insertion: Vector | None = None
+    origin: Point | None = None
+    insertion: Point | None = None
     wrap: WrapSide | None = None
     wrap_radius: Bone | None = None
     colour: Colour | None = None
@@ -234,78 +205,19 @@ class SkeletonTable(_Table):
                              f"remove {', '.join(sized)} (flexion_range may stay)")
         return self
 
-    @classmethod
-    def of(cls, skeleton: Skeleton) -> SkeletonTable:
+    @staticmethod
+    def keys_of(skeleton: Skeleton) -> dict[str, Any]:
+        """``skeleton`` by the table's keys, unchecked."""
         fields = asdict(skeleton)
         flexion_range = (fields.pop("min_flexion"), fields.pop("max_flexion"))
         if skeleton.model == "arm26":  # its bones are arm26's: the other fields do not apply
-            return cls(model="arm26", flexion_range=flexion_range)
-        return cls(flexion_range=flexion_range, **fields)
+            return {"model": "arm26", "flexion_range": flexion_range}
+        return {"flexion_range": flexion_range, **fields}
 
     def skeleton(self) -> Skeleton:
         fields = self.model_dump()
         low, high = fields.pop("flexion_range")
         return Skeleton(min_flexion=low, max_flexion=high, **fields)
-
-
-class ViewTable(_Table):
-    """How the model is turned, moved and scaled, and the camera's field of view, as in
-    :class:`View`, whose defaults and bounds these are."""
-
-    yaw: Angle = View.yaw
-    pitch: Angle = View.pitch
-    roll: Angle = View.roll
-    scale: Annotated[float, _number(SCALE)] = View.scale
-    offset: Vector = View.offset
-    fov: Annotated[float, _number(FIELD_OF_VIEW)] = View.fov
-
-    @classmethod
-    def of(cls, view: View) -> ViewTable:
-        return cls(**asdict(view))
-
-    def view(self) -> View:
-        return View(**self.model_dump())
-
-
-class LightTable(_Table):
-    """A point light in world space (cm), and the weights of the shading terms, as in
-    :class:`Light`, whose defaults and bounds these are."""
-
-    position: Vector = Light.position
-    ambient: Annotated[float, _number(FRACTION)] = Light.ambient
-    diffuse: Annotated[float, _number(FRACTION)] = Light.diffuse
-    specular: Annotated[float, _number(FRACTION)] = Light.specular
-    shininess: Annotated[float, _number(SHININESS)] = Light.shininess
-
-    @classmethod
-    def of(cls, light: Light) -> LightTable:
-        return cls(**asdict(light))
-
-    def light(self) -> Light:
-        return Light(**self.model_dump())
-
-
-class RenderTable(_Table):
-    """How the picture is drawn, as in :class:`RenderSettings`, whose defaults and bounds
-    these are."""
-
-    segments: Annotated[int, _whole(SEGMENTS)] = RenderSettings.segments
-    shading: Shading = RenderSettings.shading
-    ssaa: Annotated[int, _whole(SUPERSAMPLING)] = RenderSettings.ssaa
-    muscle_colour: Colour = RenderSettings.muscle_colour
-    tendon_colour: Colour = RenderSettings.tendon_colour
-    bone_colour: Colour = RenderSettings.bone_colour
-    background: Colour = RenderSettings.background
-    graphics: Graphics = RenderSettings.graphics
-    colors: Colors = RenderSettings.colors
-    colour_by: ColourBy = RenderSettings.colour_by
-
-    @classmethod
-    def of(cls, settings: RenderSettings) -> RenderTable:
-        return cls(**asdict(settings))
-
-    def render_settings(self) -> RenderSettings:
-        return RenderSettings(**self.model_dump())
 
 
 class ForceTable(_Table):
@@ -314,15 +226,15 @@ class ForceTable(_Table):
     (``engine/arm26_forces.py``); another muscle must give the first four, and takes Thelen's
     curves as arm26 shapes them."""
 
-    max_isometric_force: Annotated[float, _number(FORCE)] | None = None
-    optimal_fibre_length: Annotated[float, _number(FIBRE)] | None = None
-    tendon_slack_length: Annotated[float, _number(FIBRE)] | None = None
-    pennation: Annotated[float, _number(PENNATION)] | None = None
-    tendon_strain: Annotated[float, _number(STRAIN)] | None = None
-    passive_strain: Annotated[float, _number(STRAIN)] | None = None
-    active_shape: Annotated[float, _number(SHAPE)] | None = None
-    passive_shape: Annotated[float, _number(SHAPE)] | None = None
-    minimum_activation: Annotated[float, _number(LEAST_ACTIVATION)] | None = None
+    max_isometric_force: Annotated[float, number(FORCE)] | None = None
+    optimal_fibre_length: Annotated[float, number(FIBRE)] | None = None
+    tendon_slack_length: Annotated[float, number(FIBRE)] | None = None
+    pennation: Annotated[float, number(PENNATION)] | None = None
+    tendon_strain: Annotated[float, number(STRAIN)] | None = None
+    passive_strain: Annotated[float, number(STRAIN)] | None = None
+    active_shape: Annotated[float, number(SHAPE)] | None = None
+    passive_shape: Annotated[float, number(SHAPE)] | None = None
+    minimum_activation: Annotated[float, number(LEAST_ACTIVATION)] | None = None
 
 
 class ConfigFile(_Table):
@@ -330,9 +242,9 @@ class ConfigFile(_Table):
     muscles: dict[MuscleName, CompanionTable] = {}
     forces: dict[MuscleName, ForceTable] = {}
     skeleton: SkeletonTable = SkeletonTable()
-    view: ViewTable = ViewTable()
-    light: LightTable = LightTable()
-    render: RenderTable = RenderTable()
+    view: View = View()
+    light: Light = Light()
+    render: RenderSettings = RenderSettings()
 
 
 def rgb(colour: str) -> tuple[int, int, int]:
@@ -397,12 +309,12 @@ def _parsed(path: Path, source: str) -> Config:
                           "configuration needs at most 2 levels") from None
     _check_cost(path, source, data)
     try:
-        table = ConfigFile.model_validate(data)
+        table = ConfigFile.model_validate(data, context=IN_A_FILE)
     except ValidationError as error:
         raise ConfigError(_describe(path, source, error)) from None
     arm = _build_arm(path, source, table)
-    return Config(path, arm, table.view.view(), table.light.light(),
-                  table.render.render_settings(), source, _forces(path, source, table, arm))
+    return Config(path, arm, table.view, table.light, table.render, source,
+                  _forces(path, source, table, arm))
 
 
 def _read_text(path: Path) -> str:
@@ -713,7 +625,7 @@ def _problem(within: tuple, problem: dict) -> str:
     refusal = problem.get("ctx", {}).get("error")
     if isinstance(refusal, OutOfBounds):
         return f"must be {refusal.wanted} (found {printable(refusal.found)})"
-    if kind == "extra_forbidden":
+    if kind in ("extra_forbidden", "unexpected_keyword_argument"):  # a model's, a dataclass's
         return _unknown_key_message(location)
     if kind == "missing" and len(location) == 1:
         return f"the [{location[0]}] table is required, but missing"
@@ -739,16 +651,16 @@ def _unknown_key_message(location: tuple) -> str:
         if isinstance(model, _NamedTables):  # part is the table's name
             model = model.table
             continue
-        field = model.model_fields.get(part) if isinstance(part, str) else None
+        field = model.__pydantic_fields__.get(part) if isinstance(part, str) else None
         annotation = getattr(field, "annotation", None)
         if get_origin(annotation) is dict:  # [muscles.NAME]: any name, each one table
             model = _NamedTables(get_args(annotation)[1])
-        elif isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        elif hasattr(annotation, "__pydantic_fields__"):  # a table: a model or a setting
             model = annotation
         else:
             model = None
             break
-    allowed = list(model.model_fields) if isinstance(model, type) else []
+    allowed = list(model.__pydantic_fields__) if isinstance(model, type) else []
     message = f"unknown key {printable(quoted(str(key)))}"
     close = difflib.get_close_matches(str(key), allowed, n=1)
     if parents and key in ConfigFile.model_fields:
@@ -765,7 +677,7 @@ def _unknown_key_message(location: tuple) -> str:
 class _NamedTables:
     """A table of tables by any name (``[muscles.NAME]``), each a ``table``."""
 
-    table: type[BaseModel]
+    table: type
 
 
 def _located(path: Path, source: str, location: tuple, message: str) -> str:
@@ -854,10 +766,8 @@ def save_config(config: Config, arm: Arm, view: View, light: Light, render: Rend
     document = tomlkit.parse(config.source)
     try:
         _write_muscle(document, arm, config.arm)
-        _write_changes(target, document, "skeleton", SkeletonTable, arm.skeleton)
-        _write_changes(target, document, "view", ViewTable, view)
-        _write_changes(target, document, "light", LightTable, light)
-        _write_changes(target, document, "render", RenderTable, render)
+        _write_changes(target, document, {"skeleton": arm.skeleton, "view": view,
+                                          "light": light, "render": render})
         text = tomlkit.dumps(document)
         saved = _parsed(target, text)
     except ConfigError as error:
@@ -946,23 +856,44 @@ def _update_value(container: Any, key: Any, value: float) -> None:
         container[key] = value
 
 
-def _write_changes(path: Path, document: tomlkit.TOMLDocument, name: str, table: type[_Table],
-                   setting: Any) -> None:
-    """Write the fields of ``setting`` that differ from the ``[name]`` table in ``document``."""
+def _write_changes(path: Path, document: tomlkit.TOMLDocument, settings: dict[str, Any]) -> None:
+    """Write the fields of each setting (``{table name: setting}``) that differ from its table
+    in ``document``, once every one is checked as the file's table: a value that bypassed its
+    own checks, or that a file may not name (the "overdraw" shading), is refused."""
+    given = {name: _keys_of(setting) for name, setting in settings.items()}
     try:
-        value = table.of(setting)
-    except ValidationError as error:  # a value that bypassed its own checks
-        raise ConfigError(_describe(path, "", error, within=(name,))) from None
-    default = table()
-    existing = document.get(name)
-    for field in table.model_fields:
-        new = getattr(value, field)
-        current = existing.get(field, getattr(default, field)) if existing else getattr(default, field)
-        if _same(current, new):
-            continue
-        if existing is None:
-            existing = document[name] = tomlkit.table()
-        existing[field] = list(new) if isinstance(new, tuple) else new
+        checked = _Saved.model_validate(given, context=IN_A_FILE)
+    except ValidationError as error:
+        raise ConfigError(_describe(path, "", error)) from None
+    for name in settings:
+        new = _keys_of(getattr(checked, name))
+        default = _keys_of(ConfigFile.model_fields[name].default)
+        existing = document.get(name)
+        for key, value in new.items():
+            current = existing.get(key, default[key]) if existing else default[key]
+            if _same(current, value):
+                continue
+            if existing is None:
+                existing = document[name] = tomlkit.table()
+            existing[key] = list(value) if isinstance(value, tuple) else value
+
+
+class _Saved(_Table):
+    """The tables a save writes besides the muscles'."""
+
+    skeleton: SkeletonTable
+    view: View
+    light: Light
+    render: RenderSettings
+
+
+def _keys_of(setting: Any) -> dict[str, Any]:
+    """A setting's fields, or a skeleton's, by the keys of its table in a file."""
+    if isinstance(setting, Skeleton):
+        return SkeletonTable.keys_of(setting)
+    if isinstance(setting, BaseModel):
+        return setting.model_dump()
+    return asdict(setting)
 
 
 def _same(a: Any, b: Any) -> bool:

@@ -1,20 +1,24 @@
 """Runtime settings: how the model is viewed and how the picture is rendered, as frozen values
 that check their rules when they are made.
 
-A setting outside its rules cannot exist, whichever way it comes (a file, a key, the command
-line, a script): making one raises :class:`SettingError` naming the field, the value and what
-is allowed. The third setting, the light, is :class:`~engine.transforms.Light`, beside the
-camera the renderer takes with it; it checks itself by the rules here.
-
-Each default and each bound is written once, here (the light's beside the light); the file's
-tables in ``engine/config.py`` take theirs from these, and convert to and from these values.
+Each rule (a bound, the words allowed) is written once, here, as a type pydantic validates
+(the light's beside the light, ``engine/transforms.py``), and each default beside its field.
+A file's ``[view]``, ``[light]`` and ``[render]`` tables validate straight into these values
+(``engine/config.py``), whose messages name the file, the line and the field; made any other
+way (a key, the command line, a script), a setting outside its rules raises
+:class:`SettingError` naming the field, the value and what is allowed. Either way no such
+setting exists.
 """
 
 from __future__ import annotations
 
-import re
-from dataclasses import dataclass, fields
-from typing import Any, Callable, Literal, Mapping, get_args
+import functools
+from dataclasses import fields
+from typing import Annotated, Any, Literal, Mapping, get_args
+
+from pydantic import ConfigDict, Field, PlainValidator, ValidationError, ValidationInfo
+from pydantic.dataclasses import dataclass
+from pydantic_core import PydanticCustomError
 
 from biceps.engine.bounds import (ANGLE, COORDINATE, SCALE, Limits, OutOfBounds, finite, quoted,
                                   whole)
@@ -43,6 +47,10 @@ how active it is."""
 COLOUR = "#[0-9a-fA-F]{6}"
 """A whole colour, ``#rrggbb``, as a regular expression."""
 
+IN_A_FILE = {"in_a_file": True}
+"""The validation context of a file's tables: a file may not name what only a run may set
+(the "overdraw" shading)."""
+
 
 THREADS_VARIABLE = "BICEPS_THREADS"
 """The environment variable that sets how many threads draw a frame: a setting of the
@@ -61,102 +69,108 @@ def drawing_threads(environ: Mapping[str, str]) -> int | None:
                        "threads from 1 (1 draws on one core), or unset for every core")
 
 
-Rule = Callable[[str, Any], Any]
-"""Checks the value of the field it is told the name of: returns the value to keep, or raises
-:class:`SettingError`."""
+def number(limits: Limits | None = None) -> PlainValidator:
+    """A finite number (a bool is not one, nor "1.5") within ``limits``: the rule of
+    ``engine/bounds.py``, so that a file, a dialog and a key refuse the same numbers in the
+    same words."""
+    return PlainValidator(lambda value: finite(value, limits))
 
 
-def settle(setting: Any, owner: str, **rules: Rule) -> None:
-    """Check every field of the frozen dataclass ``setting`` by its rule (named like the field),
-    and keep what the rule returns: a float for a number, a tuple for a point, so that equal
-    settings compare equal however they were written."""
-    for field in fields(setting):
-        value = rules[field.name](f"{owner}.{field.name}", getattr(setting, field.name))
-        object.__setattr__(setting, field.name, value)
-
-
-def number(limits: Limits | None = None) -> Rule:
-    """A finite number (a bool is not one) within ``limits``."""
-
-    def check(where: str, value: Any) -> float:
-        try:
-            return finite(value, limits)
-        except OutOfBounds as error:
-            raise _refused(where, value, error.wanted) from None
-
-    return check
-
-
-def integer(limits: Limits) -> Rule:
+def integer(limits: Limits) -> PlainValidator:
     """A whole number (not a bool, nor a float such as 2.0) within ``limits``."""
-
-    def check(where: str, value: Any) -> int:
-        try:
-            return whole(value, limits)
-        except OutOfBounds as error:
-            raise _refused(where, value, error.wanted) from None
-
-    return check
+    return PlainValidator(lambda value: whole(value, limits))
 
 
-def point(where: str, value: Any) -> tuple[float, float, float]:
-    """Three finite numbers, x, y and z, each within :data:`~engine.bounds.COORDINATE`."""
-    try:
-        if not isinstance(value, (tuple, list)) or len(value) != 3:
-            raise ValueError
-        return tuple(finite(v, COORDINATE) for v in value)
-    except ValueError:
-        raise _refused(where, value, COORDINATE.of("three finite numbers (x, y, z)")) from None
+class Wanted(str):
+    """What a field allows, in words, where its type's own refusals say it piece by piece (a
+    point's coordinate by coordinate): a refused setting's message says it whole."""
 
 
-def one_of(choices: tuple[str, ...]) -> Rule:
-    """One of the words ``choices``."""
+Coordinate = Annotated[float, number(COORDINATE)]
+Point = Annotated[tuple[Coordinate, Coordinate, Coordinate],
+                  Wanted(COORDINATE.of("three finite numbers (x, y, z)"))]
+"""x, y and z (cm), each within :data:`~engine.bounds.COORDINATE`."""
 
-    def check(where: str, value: Any) -> str:
-        if not isinstance(value, str) or value not in choices:
-            *others, last = map(repr, choices)
-            raise _refused(where, value, f"{', '.join(others)} or {last}")
+Colour = Annotated[str, Field(pattern=f"^{COLOUR}$"), Wanted("a colour written #rrggbb")]
+
+
+def _words(choices: tuple[str, ...]) -> str:
+    *others, last = map(repr, choices)
+    return f"{', '.join(others)} or {last}"
+
+
+def _shading(value: Any, info: ValidationInfo) -> str:
+    choices = get_args(Shading) if (info.context or {}).get("in_a_file") else SHADINGS
+    if isinstance(value, str) and value in choices:
         return value
-
-    return check
-
-
-def colour(where: str, value: Any) -> str:
-    """A colour written ``#rrggbb``."""
-    if not isinstance(value, str) or not re.fullmatch(COLOUR, value):
-        raise _refused(where, value, "a colour written #rrggbb")
-    return value
+    # pydantic's own words for a Literal, as the other choices' refusals say it
+    raise PydanticCustomError("literal_error", "Input should be {expected}",
+                              {"expected": _words(choices)})
 
 
-def _refused(where: str, value: Any, wanted: str) -> SettingError:
-    return SettingError(f"{where} is {quoted(value)}: it must be {wanted}")
+def setting(owner: str):
+    """Make a class a frozen dataclass whose fields pydantic validates by their types; made in
+    code rather than validated from a file, a value outside the rules raises
+    :class:`SettingError`, named ``owner.field``. Unknown fields are refused: in a file, a
+    misspelt key must not be a silent default."""
+
+    def make(cls: type) -> type:
+        cls = dataclass(frozen=True, config=ConfigDict(extra="forbid"))(cls)
+        validated = cls.__init__
+
+        @functools.wraps(validated)
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            try:
+                validated(self, *args, **kwargs)
+            except ValidationError as error:
+                given = {**dict(zip((f.name for f in fields(cls)), args)), **kwargs}
+                raise _refused(owner, cls, given, error) from None
+
+        cls.__init__ = __init__
+        return cls
+
+    return make
+
+
+def _refused(owner: str, cls: type, given: dict[str, Any], error: ValidationError) -> SettingError:
+    """The first problem of ``error``, met making ``cls`` of the fields ``given``, in words."""
+    problem = error.errors(include_url=False)[0]
+    name = problem["loc"][0] if problem["loc"] else ""
+    field = cls.__pydantic_fields__.get(name)
+    if field is None:
+        allowed = ", ".join(cls.__pydantic_fields__)
+        return SettingError(f"{owner} has no setting {name!r}: its settings are {allowed}")
+    value = given.get(name, problem["input"])
+    wanted = next((m for m in field.metadata if isinstance(m, Wanted)), None)
+    refusal = problem.get("ctx", {}).get("error")
+    if wanted is None and isinstance(refusal, OutOfBounds):
+        wanted = refusal.wanted
+    if wanted is None:
+        wanted = problem.get("ctx", {}).get("expected", problem["msg"])
+    return SettingError(f"{owner}.{name} is {quoted(value)}: it must be {wanted}")
 
 
 FIELD_OF_VIEW = Limits(1, 170, exclusive=True, unit=" degrees")
 
 
-@dataclass(frozen=True)
+@setting("view")
 class View:
     """How the model is turned (degrees), scaled and moved (cm, after turning), and the
     camera's vertical field of view (degrees)."""
 
-    yaw: float = 0.0
-    pitch: float = 0.0
-    roll: float = 0.0
-    scale: float = 1.0
-    offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    fov: float = 35.0
-
-    def __post_init__(self) -> None:
-        settle(self, "view", yaw=number(ANGLE), pitch=number(ANGLE), roll=number(ANGLE),
-               scale=number(SCALE), offset=point, fov=number(FIELD_OF_VIEW))
+    yaw: Annotated[float, number(ANGLE)] = 0.0
+    pitch: Annotated[float, number(ANGLE)] = 0.0
+    roll: Annotated[float, number(ANGLE)] = 0.0
+    scale: Annotated[float, number(SCALE)] = 1.0
+    offset: Point = (0.0, 0.0, 0.0)
+    fov: Annotated[float, number(FIELD_OF_VIEW)] = 35.0
 
 
 SEGMENTS = Limits(3, 1024)
 SUPERSAMPLING = Limits(1, 4)
 
 
-@dataclass(frozen=True)
+@setting("render")
 class RenderSettings:
     """How the picture is drawn: the vertices around each part's axis, the shading model,
     the supersampling factor (``ssaa`` x ``ssaa`` samples a pixel), the colours (the
@@ -166,19 +180,13 @@ class RenderSettings:
     where a muscle is shorter than at rest, cool where longer; "activation" pale at rest,
     amber to red as it works)."""
 
-    segments: int = 48
-    shading: str = "gouraud"
-    ssaa: int = 1
-    muscle_colour: str = "#b4483e"
-    tendon_colour: str = "#e9e4ec"
-    bone_colour: str = "#e3d9c0"
-    background: str = "#12161c"
-    graphics: str = "halfblocks"
-    colors: str = "auto"
-    colour_by: str = "muscle"
-
-    def __post_init__(self) -> None:
-        settle(self, "render", segments=integer(SEGMENTS), shading=one_of(SHADINGS),
-               ssaa=integer(SUPERSAMPLING), muscle_colour=colour, tendon_colour=colour,
-               bone_colour=colour, background=colour, graphics=one_of(get_args(Graphics)),
-               colors=one_of(get_args(Colors)), colour_by=one_of(get_args(ColourBy)))
+    segments: Annotated[int, integer(SEGMENTS)] = 48
+    shading: Annotated[str, PlainValidator(_shading)] = "gouraud"
+    ssaa: Annotated[int, integer(SUPERSAMPLING)] = 1
+    muscle_colour: Colour = "#b4483e"
+    tendon_colour: Colour = "#e9e4ec"
+    bone_colour: Colour = "#e3d9c0"
+    background: Colour = "#12161c"
+    graphics: Graphics = "halfblocks"
+    colors: Colors = "auto"
+    colour_by: ColourBy = "muscle"

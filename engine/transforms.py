@@ -19,11 +19,12 @@ Conventions (those of ``engine/__init__.py``, and OpenGL's):
 from __future__ import annotations
 
 import math
+from typing import Annotated
 from dataclasses import dataclass
 
 import numpy as np
 
-from biceps.engine.settings import Limits, number, point, settle
+from biceps.engine.settings import Limits, Point, number, setting
 
 
 def rotation_x(angle: float) -> np.ndarray:
@@ -165,7 +166,7 @@ FRACTION = Limits(0, 1)
 SHININESS = Limits(1, 512)
 
 
-@dataclass(frozen=True)
+@setting("light")
 class Light:
     """A white point light fixed in world space (it does not turn with the model).
 
@@ -174,16 +175,11 @@ class Light:
     rules cannot be made (:class:`~engine.errors.SettingError`, see ``engine/settings.py``).
     """
 
-    position: tuple[float, float, float] = (60.0, 80.0, 120.0)
-    ambient: float = 0.2
-    diffuse: float = 0.8
-    specular: float = 0.3
-    shininess: float = 24.0
-
-    def __post_init__(self) -> None:
-        settle(self, "light", position=point, ambient=number(FRACTION),
-               diffuse=number(FRACTION), specular=number(FRACTION),
-               shininess=number(SHININESS))
+    position: Point = (60.0, 80.0, 120.0)
+    ambient: Annotated[float, number(FRACTION)] = 0.2
+    diffuse: Annotated[float, number(FRACTION)] = 0.8
+    specular: Annotated[float, number(FRACTION)] = 0.3
+    shininess: Annotated[float, number(SHININESS)] = 24.0
 
 
 def frame_camera(bounds_min, bounds_max, aspect: float, fov_y_deg: float = 35.0,
