@@ -48,8 +48,8 @@ from biceps.engine.files import read_regular_file, same_file, write_atomically
 from biceps.engine.hill import HillParameters
 from biceps.engine.muscle import Muscle, VolumeMode
 from biceps.engine.names import printable
-from biceps.engine.settings import (IN_A_FILE, Colour, Coordinate, Point, RenderSettings, View,
-                                    number)
+from biceps.engine.settings import (COLOUR_WANTED, IN_A_FILE, Colour, Coordinate, Point,
+                                    RenderSettings, View, number)
 from biceps.engine import arm26
 from biceps.engine.path import MusclePath, PathDrive, ViaPath, Wrap, WrapSide
 from biceps.engine.skeleton import (Attachment, Skeleton, SkeletonModel, attachment_problem,
@@ -635,7 +635,7 @@ def _problem(within: tuple, problem: dict) -> str:
         return (f"a muscle's name is 1 to 40 letters, digits, '_' or '-' "
                 f"(found {printable(quoted(found))})")
     if kind == "string_pattern_mismatch":  # the other patterns are colours
-        return f"should be a colour written #rrggbb (found {printable(quoted(found))})"
+        return f"should be {COLOUR_WANTED} (found {printable(quoted(found))})"
     message = problem["msg"].removeprefix("Value error, ")
     if kind == "value_error":
         return message

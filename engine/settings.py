@@ -91,7 +91,8 @@ Point = Annotated[tuple[Coordinate, Coordinate, Coordinate],
                   Wanted(COORDINATE.of("three finite numbers (x, y, z)"))]
 """x, y and z (cm), each within :data:`~engine.bounds.COORDINATE`."""
 
-Colour = Annotated[str, Field(pattern=f"^{COLOUR}$"), Wanted("a colour written #rrggbb")]
+COLOUR_WANTED = Wanted("a colour written #rrggbb")
+Colour = Annotated[str, Field(pattern=f"^{COLOUR}$"), COLOUR_WANTED]
 
 
 def _words(choices: tuple[str, ...]) -> str:
