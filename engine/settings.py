@@ -136,7 +136,7 @@ def setting(owner: str):
 def _refused(owner: str, cls: type, given: dict[str, Any], error: ValidationError) -> SettingError:
     """The first problem of ``error``, met making ``cls`` of the fields ``given``, in words."""
     problem = error.errors(include_url=False)[0]
-    name = problem["loc"][0] if problem["loc"] else ""
+    name = problem["loc"][0]
     field = cls.__pydantic_fields__.get(name)
     if field is None:
         allowed = ", ".join(cls.__pydantic_fields__)

@@ -19,8 +19,8 @@ Conventions (those of ``engine/__init__.py``, and OpenGL's):
 from __future__ import annotations
 
 import math
-from typing import Annotated
 from dataclasses import dataclass
+from typing import Annotated
 
 import numpy as np
 
