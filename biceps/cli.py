@@ -366,6 +366,59 @@ def _check_terminal() -> None:
                               "picture without a terminal: biceps snapshot -o arm.png")
 
 
+@main.command(short_help="Serve the app to web browsers, one process a visitor.")
+@config_argument
+@click.option("--host", default="localhost", show_default=True,
+              help="The address to listen on; anything but this machine's own (localhost) "
+              "lets anyone who can reach it use the app.")
+@click.option("--port", type=click.IntRange(1, 65535), default=8000, show_default=True)
+@click.option("--max-visitors", type=click.IntRange(1, 1000), default=10, show_default=True,
+              help="At most this many at once, each a process of its own; the next is shown "
+              "a page saying it is full.")
+@_refusals_exit_2
+def serve(config: Path, host: str, port: int, max_visitors: int) -> None:
+    """Serve the app on CONFIG to web browsers (needs the serve extra: textual-serve): each
+    visitor gets the app in a browser tab, its exports as downloads, its files in a folder of
+    its own, removed when the tab closes."""
+    from biceps.engine.config import load_config
+    from biceps.serve import is_local, serve as serve_app
+
+    load_config(config)  # a bad file is refused here, not in every visitor's tab
+    if not is_local(host):
+        _say(f"biceps: warning: serving on {host}: anyone who can reach this machine on port "
+             f"{port} can use the app, up to {max_visitors} at once")
+    serve_app(config.resolve(), host, port, max_visitors)
+
+
+@main.command(hidden=True)
+@config_argument
+@click.option("--scratch", type=click.Path(path_type=Path, file_okay=False, exists=True),
+              required=True)
+@_refusals_exit_2
+def visit(config: Path, scratch: Path) -> None:
+    """One visitor's app under biceps serve: Textual's web driver on stdin and stdout, files
+    confined to a folder of its own under SCRATCH, removed when the visitor leaves."""
+    import shutil
+    import tempfile
+
+    from biceps.engine.config import load_config
+    from biceps.tui import visitor
+    from biceps.tui.app import run_app
+
+    loaded = load_config(config)
+    own = Path(tempfile.mkdtemp(prefix="visitor-", dir=scratch))
+    try:
+        visitor.confine_to(own)
+        # The browser's terminal (xterm.js) shows 24-bit colour and text, never images:
+        # nothing is asked of it.
+        status = run_app(loaded, colors="truecolor", graphics="halfblocks")
+    finally:
+        os.chdir(scratch)
+        shutil.rmtree(own, ignore_errors=True)
+    if status:
+        sys.exit(status)
+
+
 @main.command(short_help="Say what this terminal can show, and what the app would use.")
 @click.option("--graphics", type=click.Choice(GRAPHICS), default="auto", show_default=True,
               help="The choice to explain, as the app would take it.")

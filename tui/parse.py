@@ -12,6 +12,7 @@ from pathlib import Path
 from biceps.engine.errors import FileError, shown
 from biceps.engine.files import check_name
 from biceps.engine.names import printable
+from biceps.tui import visitor
 
 
 def parse_number(text: str) -> float:
@@ -32,8 +33,9 @@ def parse_path(text: str) -> Path:
     text = text.strip()
     if not text:
         raise ValueError("give a file name")
+    path = visitor.confined(Path(text))  # under biceps serve, inside the visitor's folder
     try:
-        path = Path(text).expanduser()
+        path = path.expanduser()
     except RuntimeError:  # ~someone, and there is no such user
         user = text[1:].split("/", 1)[0]
         raise ValueError(f"there is no user {shown(user)} for ~{printable(user)} to "

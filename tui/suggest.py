@@ -8,6 +8,7 @@ from pathlib import Path
 from textual.suggester import Suggester
 
 from biceps.configs import bundled_names
+from biceps.tui import visitor
 
 
 class PathSuggester(Suggester):
@@ -21,6 +22,10 @@ class PathSuggester(Suggester):
     async def get_suggestion(self, value: str) -> str | None:
         head = value[: value.rfind("/") + 1]
         start = value[len(head) :]
+        try:
+            visitor.confined(Path(head or "."))  # under biceps serve, no names from elsewhere
+        except ValueError:
+            return None
         try:
             directory = Path(head).expanduser() if head else Path(".")
             entries = sorted(directory.iterdir())
