@@ -84,7 +84,7 @@ from biceps.tui.screens.prompt import Field, Prompt
 from biceps.tui.screens.record import RecordPrompt, as_recording
 from biceps.tui.suggest import ModelSuggester, PathSuggester
 from biceps.tui.terminal_input import read_terminal_leniently
-from biceps.tui import textual_private
+from biceps.tui import textual_private, visitor
 from biceps.tui.textual_private import AppHooks, colour_system, write
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import Plots
@@ -671,7 +671,7 @@ class BicepsApp(AppHooks):
                 saved = await asyncio.to_thread(partial(save, overwrite=True))
             self._adopt(saved, scene)
             self.unsaved = has_unsaved_edits(self.scene, scene)  # edits made meanwhile
-            self.notify(f"Saved {printable(saved.path.resolve())}", markup=False)
+            self.notify(f"Saved {printable(self._hand_over(saved.path))}", markup=False)
             return True
 
     def _adopt(self, config: Config, saved: Scene) -> None:
@@ -700,7 +700,8 @@ class BicepsApp(AppHooks):
         """Ask for a file and save the model there; True if saved."""
         path, title, note = self.config.path, "Save as", ""
         if _bundled(path):
-            path = Path.cwd() / path.name  # a copy of one's own, where one works
+            # A copy of one's own, where one works (under biceps serve, a name in one's folder)
+            path = Path(path.name) if visitor.folder() else Path.cwd() / path.name
             title = "Save a copy"
             note = (f"{printable(self.config.path.name)} is a bundled model, part of the "
                     "installation, which an upgrade replaces: save your copy where you work.")
@@ -728,7 +729,8 @@ class BicepsApp(AppHooks):
         async def read(path: Path) -> None:
             opened.append(await asyncio.to_thread(load_config, file_or_bundled(path)))
 
-        field = self._config_file_field(self.config.path, ModelSuggester())
+        shown = Path(self.config.path.name) if visitor.folder() else self.config.path
+        field = self._config_file_field(shown, ModelSuggester())
         answer = await self.push_screen_wait(
             Prompt("Open a configuration", [field], accept="Open", check=read,
                    note="A file, or a bundled model by its name: "
@@ -778,11 +780,20 @@ class BicepsApp(AppHooks):
             # Whatever breaks in an export, the app and the edits in it must survive.
             reason = f"{type(error).__name__}: {error}"
         else:
-            self.call_from_thread(self.notify, f"Exported {path.resolve()} ({width}x{height})",
+            shown = self.call_from_thread(self._hand_over, path)
+            self.call_from_thread(self.notify, f"Exported {shown} ({width}x{height})",
                                   markup=False)
             return
         self.call_from_thread(self.notify, reason, title="Not exported", severity="error",
                               markup=False)
+
+    def _hand_over(self, path: Path) -> str:
+        """Under ``biceps serve``, send ``path``, just written in the visitor's folder, to the
+        browser as a download; the name to show for it."""
+        if not self.is_web:
+            return printable(path.resolve())
+        self.deliver_binary(path)
+        return f"{printable(path.name)}, downloading"
 
     def action_toggle_plots(self) -> None:
         self.screen_stack[0].query_one(Plots).toggle()

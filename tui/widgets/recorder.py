@@ -112,11 +112,13 @@ class Recorder(Horizontal):
         self._show(message.stage, message.done, message.total)
 
     def on_recorder_ended(self, message: Ended) -> None:
-        self._recording = None
+        path, self._recording = self._recording.path, None
         self.remove_class("-busy")
         if message.failed:
             self.notify(message.note, title="Not recorded", severity="error", markup=False)
         else:
+            if self.app.is_web:  # under biceps serve: to the browser, as a download
+                self.app.deliver_binary(path)
             self.notify(message.note, markup=False)
 
     def _show(self, stage: str, done: int, total: int) -> None:
