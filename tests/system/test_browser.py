@@ -1,0 +1,142 @@
+"""``biceps serve`` in a real browser: Debian's chromium, headless, driven by selenium.
+
+The page is opened, the picture awaited and compared with the renderer's frame of the same
+view as half-block cells, sampled in the screenshot at each half cell's middle; keys turn
+the model and contract the muscle, and the picture must change to the new view's; ``e``
+exports a PNG, which must arrive as a download and be that view's picture. Both of the
+app's paths (through Textual's internals, and Textual's public one) are tried.
+
+Needs Debian's chromium and chromium-driver (``.ci/run`` installs them) and the test extra's
+selenium and textual-serve; without them the test is skipped, except in CI, where that
+is a failure. The screenshots are kept in pytest's temporary folder.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from biceps.engine.config import DEFAULT_CONFIG, load_config
+from biceps.engine.scene import Scene, SceneRenderer
+from biceps.terminal.cells import SHAPES, CellRows
+from biceps.tui.changes import length_changed, turned
+from browser import browser, missing, press, served, terminal_geometry
+from pictures import cell_pixels
+
+SIDE = 32  # the side panel's columns, shown from 100 columns on
+WAIT = 120.0  # seconds for a picture to come, at most: a loaded machine starts slowly
+MATCH = 12.0  # the mean difference per channel within which the picture is the view's
+
+
+def _expected(scene: Scene, columns: int, rows: int) -> np.ndarray:
+    """The viewport's half-block pixels for ``scene`` in a terminal of columns x rows:
+    (2 * its rows, its columns, 3)."""
+    width = columns - (SIDE if columns >= 100 else 0) - 2  # its border's two columns
+    height = rows - 3  # the border's two rows, and the footer
+    shape = SHAPES["halfblocks"]
+    frame = SceneRenderer().render(scene, width, height * 2)
+    cells = CellRows(shape)
+    cells.fit(np.ascontiguousarray(frame))
+    return cell_pixels(shape, cells.cells).astype(int)
+
+
+def _shown(screenshot: np.ndarray, geometry, pixels: np.ndarray) -> np.ndarray:
+    """The screenshot's colours at the middle of each half cell of the viewport."""
+    _, _, left, top, width, height = geometry
+    rows, columns = pixels.shape[:2]
+    xs = (left + (1 + np.arange(columns) + 0.5) * width).astype(int)
+    ys = (top + (1 + np.arange(rows) // 2 + 0.25 + 0.5 * (np.arange(rows) % 2))
+          * height).astype(int)
+    return screenshot[ys][:, xs]
+
+
+def _difference(shown: np.ndarray, pixels: np.ndarray) -> float:
+    """The mean difference per channel over the arm (where the expected picture is not its
+    background, the colour of its first pixel)."""
+    arm = (pixels != pixels[0, 0]).any(axis=2)
+    return float(np.abs(shown - pixels)[arm].mean())
+
+
+def _screenshot(driver) -> np.ndarray:
+    return np.asarray(Image.open(io.BytesIO(driver.get_screenshot_as_png())).convert("RGB"),
+                      dtype=int)
+
+
+def _until(condition, what: str, timeout: float = WAIT):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        found = condition()
+        if found is not None:
+            return found
+        time.sleep(0.3)
+    raise AssertionError(f"never came: {what}")
+
+
+def _shows(driver, scene: Scene, tmp_path: Path, name: str) -> float:
+    """Wait until the page shows ``scene``'s picture; its mean difference per channel. The
+    screenshot that showed it is kept as ``name``.png."""
+    geometry = _until(lambda: terminal_geometry(driver), "the terminal's size")
+    pixels = _expected(scene, *geometry[:2])
+    best = [np.inf]
+
+    def matching():
+        screenshot = _screenshot(driver)
+        difference = _difference(_shown(screenshot, geometry, pixels), pixels)
+        best[0] = min(best[0], difference)
+        if difference < MATCH:
+            Image.fromarray(screenshot.astype(np.uint8)).save(tmp_path / f"{name}.png")
+            return difference
+        return None
+
+    try:
+        return _until(matching, f"the picture of {name}")
+    except AssertionError:
+        Image.fromarray(_screenshot(driver).astype(np.uint8)).save(tmp_path / f"{name}.png")
+        raise AssertionError(f"{name}: the picture never matched, at best {best[0]:.1f} per "
+                             f"channel (the bound {MATCH}); see {tmp_path}") from None
+
+
+@pytest.mark.parametrize("path", ["private", "public"])
+def test_a_browser_shows_the_app_turns_contracts_and_downloads_a_png(path, tmp_path):
+    gone = missing()
+    if gone:
+        if os.environ.get("CI"):
+            pytest.fail(f"missing {', '.join(gone)}: .ci/run installs them")
+        pytest.skip(f"needs {', '.join(gone)} (Debian's chromium and chromium-driver, the "
+                    "test extra's selenium and textual-serve)")
+    downloads = tmp_path / "downloads"
+    downloads.mkdir()
+    start = Scene.of(load_config(DEFAULT_CONFIG))
+    arm, _ = length_changed(start.arm, -2.0)
+    turned_and_contracted = turned(start, roll=-15.0).with_arm(arm)
+    with served(DEFAULT_CONFIG, private=path == "private", log=tmp_path / "serve.log") as url:
+        driver = browser(downloads)
+        try:
+            driver.get(url)
+            first = _shows(driver, start, tmp_path, "first")
+            press(driver, "]]]CC")  # roll clockwise 3 x 5 degrees, contract 2 x 1 cm
+            after = _shows(driver, turned_and_contracted, tmp_path, "turned")
+            geometry = terminal_geometry(driver)
+            before_keys = _expected(start, *geometry[:2])
+            shown = _shown(_screenshot(driver), geometry, before_keys)
+            assert _difference(shown, before_keys) > 2 * after  # no longer the first view
+            press(driver, "e")
+            time.sleep(1.0)  # the dialog's worker opens it after the key
+            press(driver, "\n")  # biceps.png, 1920x1080, as offered
+            png = _until(lambda: next(iter(downloads.glob("*.png")), None), "the download")
+            _until(lambda: True if not list(downloads.glob("*.crdownload")) else None,
+                   "the download's end")
+        finally:
+            driver.quit()
+    assert png.name == "biceps.png"
+    picture = np.asarray(Image.open(png).convert("RGB"), dtype=int)
+    expected = SceneRenderer().render(turned_and_contracted.unmarked(), 1920, 1080)
+    assert picture.shape == (1080, 1920, 3)
+    assert np.abs(picture - expected).mean() < 0.5
+    assert first < MATCH and after < MATCH
