@@ -80,6 +80,12 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
     class ClassServer(server.Server):
         visitors = 0
 
+        async def on_startup(self, app: web.Application) -> None:
+            address = f"[{host}]" if ":" in host else host
+            self.console.print(f"biceps: serving {config.name} at http://{address}:{port}/ to "
+                               f"at most {max_visitors} visitors at once; ctrl+c stops",
+                               highlight=False, markup=False)
+
         async def handle_index(self, request: web.Request) -> web.StreamResponse:
             if self.visitors >= max_visitors:
                 return web.Response(status=503, content_type="text/html",
