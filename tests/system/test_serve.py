@@ -21,7 +21,7 @@ from browser import free_port, served
 pytest.importorskip("aiohttp", reason="comes with textual-serve, the serve extra")
 import aiohttp  # noqa: E402
 
-HALF_BLOCK = "\u2580".encode()
+HALF_BLOCKS = ("\u2580".encode(), "\u2584".encode())  # upper and lower
 
 
 def _visitors() -> list[int]:
@@ -45,7 +45,7 @@ async def _first_picture(websocket) -> None:
     while True:
         message = await asyncio.wait_for(websocket.receive(), 120)
         assert message.type == aiohttp.WSMsgType.BINARY, message
-        if HALF_BLOCK in message.data:
+        if any(block in message.data for block in HALF_BLOCKS):
             return
 
 
