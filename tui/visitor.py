@@ -1,10 +1,10 @@
 """A visitor's files under ``biceps serve``: its own scratch folder, and nothing else.
 
-A visitor's process works in a folder of its own (its uploads, and what it saves before the
-browser downloads it). Every file name it types is taken inside that folder: an absolute
-name, ``~``, ``..`` or a symbolic link leading out of it is refused; a bundled model is still
-opened by its name. Set once, at the visitor's entry point
-(``biceps visit``), for the whole process, which serves one visitor only.
+A visitor's process works in a folder of its own, where what it exports, saves or records is
+written before the browser downloads it. Every file name it types is taken inside that
+folder: an absolute name, ``~``, ``..`` or a symbolic link leading out of it is refused; a
+bundled model is still opened by its name. Set once, at the visitor's entry point (``biceps
+visit``), for the whole process, which serves one visitor only.
 """
 
 from __future__ import annotations
