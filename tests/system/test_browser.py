@@ -23,7 +23,8 @@ import pytest
 from PIL import Image
 
 from biceps.engine.config import DEFAULT_CONFIG, load_config
-from biceps.engine.scene import Scene, SceneRenderer
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.terminal.cells import SHAPES, CellRows
 from biceps.tui.changes import length_changed, turned
 from browser import browser, missing, press, served, terminal_geometry
