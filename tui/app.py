@@ -671,7 +671,7 @@ class BicepsApp(AppHooks):
                 saved = await asyncio.to_thread(partial(save, overwrite=True))
             self._adopt(saved, scene)
             self.unsaved = has_unsaved_edits(self.scene, scene)  # edits made meanwhile
-            self.notify(f"Saved {printable(self._hand_over(saved.path))}", markup=False)
+            self.notify(f"Saved {self._hand_over(saved.path)}", markup=False)
             return True
 
     def _adopt(self, config: Config, saved: Scene) -> None:
