@@ -81,8 +81,8 @@ class MainScreen(LatestSize[None]):
         self._numbers_due = False  # the numbers of a newer arm are to be shown
         self._brief = False  # the numbers shown briefly (see SHORT)
 
-    async def _ask(self, title: str, fields: Sequence[Field],
-                   check: Check) -> tuple[Any, ...] | None:
+    async def _ask_values(self, title: str, fields: Sequence[Field],
+                          check: Check) -> tuple[Any, ...] | None:
         return await self.app.push_screen_wait(Prompt(title, fields, check=check))
 
     def compose(self) -> ComposeResult:
@@ -93,7 +93,7 @@ class MainScreen(LatestSize[None]):
                 # brief in a short panel (SHORT).
                 yield Forces(id="forces")
                 yield Stats(id="stats")
-                yield NodeTable(self._ask, id="nodes")
+                yield NodeTable(self._ask_values, id="nodes")
         yield Plots(id="plots")
         yield Recorder(id="recorder")
         width, height = SMALLEST_USEFUL

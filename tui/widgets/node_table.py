@@ -104,10 +104,11 @@ class NodeTable(ScrollView, can_focus=True):
             super().__init__()
             self.node = node
 
-    def __init__(self, ask: Ask, *, id: str | None = None) -> None:
-        """``ask`` opens the dialog that edits a node (a screen's to open)."""
+    def __init__(self, ask_values: Ask, *, id: str | None = None) -> None:
+        """``ask_values`` opens the dialog that edits a node (a screen's to open), apart
+        from the app's ``ask``, which runs it one dialog at a time."""
         super().__init__(id=id)
-        self._ask = ask
+        self._ask_values = ask_values
         self._muscle: Muscle | None = None
         self._widths = tuple(len(title) for title in COLUMNS)
 
@@ -236,7 +237,7 @@ class NodeTable(ScrollView, can_focus=True):
             _number_field(f"Radius ({_range(RADIUS)})", muscle.radii[index]),
             _number_field(f"Growth ({_range(GROWTH)})", muscle.growth[index]),
         ]
-        values = await self._ask(f"Node {index + 1}", fields, check)
+        values = await self._ask_values(f"Node {index + 1}", fields, check)
         if values is not None:
             radius, growth = values
             self._request(lambda current: with_node(current, index, radius, growth),
