@@ -366,6 +366,12 @@ def _check_terminal() -> None:
                               "picture without a terminal: biceps snapshot -o arm.png")
 
 
+VISITOR_MEMORY = 1000
+"""MB of memory a visitor's app may use unless ``biceps serve`` is told otherwise."""
+VISITOR_MEMORY_LEAST = 600
+"""MB of memory a visitor's app needs at the least."""
+
+
 @main.command(short_help="Serve the app to web browsers, one process a visitor.")
 @config_argument
 @click.option("--host", default="localhost", show_default=True,
@@ -375,31 +381,46 @@ def _check_terminal() -> None:
 @click.option("--max-visitors", type=click.IntRange(1, 1000), default=10, show_default=True,
               help="At most this many at once, each a process of its own; the next is shown "
               "a page saying it is full.")
+@click.option("--visitor-memory", type=click.IntRange(VISITOR_MEMORY_LEAST, None),
+              default=VISITOR_MEMORY, show_default=True, metavar="MB",
+              help="The memory each visitor's app may use, in MB: an export or an animation "
+              "that needs more is refused in its tab.")
+@click.option("--visitor-minutes", type=click.IntRange(1, None), default=120,
+              show_default=True, metavar="MINUTES",
+              help="How long each visitor's app runs before it ends, saying so in its tab.")
 @_refusals_exit_2
-def serve(config: Path, host: str, port: int, max_visitors: int) -> None:
+def serve(config: Path, host: str, port: int, max_visitors: int, visitor_memory: int,
+          visitor_minutes: int) -> None:
     """Serve the app on CONFIG to web browsers (needs the serve extra: textual-serve): each
     visitor gets the app in a browser tab, its exports as downloads, its files in a folder of
     its own, removed when the tab closes."""
     from biceps.engine.config import load_config
-    from biceps.serve import is_local, serve as serve_app
+    from biceps.serve import Limits, is_local, serve as serve_app
 
     load_config(config)  # a bad file is refused here, not in every visitor's tab
     if not is_local(host):
         _say(f"biceps: warning: serving on {host}: anyone who can reach this machine on port "
              f"{port} can use the app, up to {max_visitors} at once")
-    serve_app(config.resolve(), host, port, max_visitors)
+    serve_app(config.resolve(), host, port, max_visitors,
+              Limits(memory=visitor_memory, minutes=visitor_minutes))
 
 
 @main.command(hidden=True)
 @config_argument
 @click.option("--scratch", type=click.Path(path_type=Path, file_okay=False, exists=True),
               required=True)
+@click.option("--memory", type=click.IntRange(VISITOR_MEMORY_LEAST, None), metavar="MB",
+              help="The most memory this process may use, in MB (its data, RLIMIT_DATA).")
 @_refusals_exit_2
-def visit(config: Path, scratch: Path) -> None:
+def visit(config: Path, scratch: Path, memory: int | None) -> None:
     """One visitor's app under biceps serve: Textual's web driver on stdin and stdout, files
     confined to a folder of its own under SCRATCH, removed when the visitor leaves."""
+    import resource
     import shutil
     import tempfile
+
+    if memory is not None:  # beyond it an allocation fails: a MemoryError, which exports catch
+        resource.setrlimit(resource.RLIMIT_DATA, (memory << 20, memory << 20))
 
     from biceps.engine.config import load_config
     from biceps.tui import visitor

@@ -12,11 +12,16 @@ only when the server starts.
 from __future__ import annotations
 
 import asyncio
+import json
 import shlex
 import shutil
+import socket
+import subprocess
 import sys
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any
 
 from biceps.engine.errors import BicepsError
@@ -25,6 +30,15 @@ EXTRA = "serve"
 LOCAL_HOSTS = ("localhost", "127.0.0.1", "::1")
 QUIT_GRACE = 5.0
 """Seconds a visitor's process has to end after its tab closed before it is killed."""
+
+
+@dataclass(frozen=True)
+class Limits:
+    """What each visitor's process may use: ``memory`` MB of data (``biceps visit
+    --memory``), for ``minutes`` minutes."""
+
+    memory: int
+    minutes: int
 
 FULL_PAGE = """<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>biceps: full</title>
@@ -52,20 +66,104 @@ def is_local(host: str) -> bool:
     return host in LOCAL_HOSTS or host.startswith("127.")
 
 
-def visit_command(config: Path, scratch: Path) -> str:
-    """The shell command textual-serve runs for each visitor."""
-    return shlex.join([sys.executable, "-m", "biceps", "visit", str(config),
-                       "--scratch", str(scratch)])
+def visit_command(config: Path, scratch: Path, limits: Limits) -> str:
+    """The shell command textual-serve runs for each visitor: ``biceps visit``, forked
+    from the zygote listening in ``scratch`` (``biceps/zygote.py``), or started afresh
+    where it does not answer. The shell becomes it (exec), so that it is the server's child
+    and ends with the server."""
+    return "exec " + shlex.join([sys.executable, "-m", "biceps.zygote", str(zygote_socket(scratch)),
+                       "visit", str(config), "--scratch", str(scratch),
+                       "--memory", str(limits.memory)])
 
 
-def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: Path) -> Any:
+def zygote_socket(scratch: Path) -> Path:
+    return scratch / "zygote"
+
+
+def start_zygote(config: Path, scratch: Path, environment: dict[str, str]) -> subprocess.Popen:
+    """The zygote for ``config``, listening in ``scratch``, started with the environment
+    a visitor's process gets (Textual reads some of it as it is imported)."""
+    with socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET) as listening:
+        listening.bind(str(zygote_socket(scratch)))
+        listening.listen(64)
+        # Its own session: ctrl+c in the server's terminal reaches the server, which stops
+        # the visitors and then this.
+        return subprocess.Popen(
+            [sys.executable, "-m", "biceps.zygote", "--zygote", str(listening.fileno()),
+             str(config)], pass_fds=[listening.fileno()], stdin=subprocess.DEVNULL,
+            env=environment, start_new_session=True)
+
+
+def stop_zygote(zygote: subprocess.Popen) -> None:
+    zygote.terminate()
+    try:
+        zygote.wait(QUIT_GRACE)
+    except subprocess.TimeoutExpired:
+        zygote.kill()
+        zygote.wait()
+
+
+def ending_note(status: int | None, limits: Limits) -> str | None:
+    """What a visitor is told when its app has ended with ``status`` (None: unknown)."""
+    if status == 0:
+        return None
+    return (f"biceps ended on an error (exit status {status}). Each visitor may use "
+            f"{limits.memory} MB of memory here: a picture or an animation larger than "
+            "that fits cannot be made. Reload the page to start again.")
+
+
+def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: Path,
+                limits: Limits, zygote: subprocess.Popen | None = None) -> Any:
     """A textual-serve Server for ``config`` (see :func:`serve`)."""
     server = textual_serve()
     from aiohttp import web
     import aiohttp_jinja2
 
     class Visit(server.AppService):
+        note: str | None = None  # said in the visitor's terminal once its app has ended
+        _time_limit: asyncio.TimerHandle | None = None
+        _stopping: asyncio.Future | None = None
+
+        async def start(self, width: int, height: int) -> None:
+            await super().start(width, height)
+            self._time_limit = asyncio.get_running_loop().call_later(
+                limits.minutes * 60, self._time_up)
+
+        def _time_up(self) -> None:
+            self.note = (f"Your {limits.minutes} minutes are up, the most a visitor has on "
+                         "this server. Reload the page to start again.")
+            if self._stopping is None:
+                self._stopping = asyncio.ensure_future(self._stop())
+
+        async def on_meta(self, data: bytes) -> None:
+            if b'"exit"' in data and json.loads(data)["type"] == "exit":
+                return  # the page is closed once the process ends, after the note
+            await super().on_meta(data)
+
+        async def run(self) -> None:
+            await super().run()  # until the app's output ends
+            try:
+                status = await asyncio.wait_for(self._process.wait(), QUIT_GRACE)
+            except asyncio.TimeoutError:
+                status = None
+            note = self.note or ending_note(status, limits)
+            try:
+                if note:
+                    await self.remote_write_bytes(f"\r\n{note}\r\n".encode())
+                await self.remote_close()
+            except ConnectionError:
+                pass  # the tab has closed
+
         async def stop(self) -> None:
+            # Stopped once, whoever asks first (the tab closing, the time limit, the server
+            # stopping): the others wait for the same.
+            if self._stopping is None:
+                self._stopping = asyncio.ensure_future(self._stop())
+            await asyncio.shield(self._stopping)
+
+        async def _stop(self) -> None:
+            if self._time_limit is not None:
+                self._time_limit.cancel()
             # textual-serve asks the app to quit and waits for its output to end; a process
             # that does not end (stuck in a long render) is killed, so none outlives its tab.
             try:
@@ -79,12 +177,32 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
 
     class ClassServer(server.Server):
         visitors = 0
+        visits: set[Visit] = set()
+        watching: asyncio.Task | None = None
 
         async def on_startup(self, app: web.Application) -> None:
             address = f"[{host}]" if ":" in host else host
-            self.console.print(f"biceps: serving {config.name} at http://{address}:{port}/ to "
-                               f"at most {max_visitors} visitors at once; ctrl+c stops",
-                               highlight=False, markup=False)
+            self.say(f"biceps: serving {config.name} at http://{address}:{port}/ to at most "
+                     f"{max_visitors} visitors at once, each for {limits.minutes} minutes "
+                     f"with {limits.memory} MB of memory; ctrl+c stops")
+            if zygote is not None:
+                self.watching = asyncio.create_task(self.watch(zygote))
+
+        def say(self, line: str) -> None:
+            self.console.print(line, highlight=False, markup=False, soft_wrap=True)
+
+        async def watch(self, zygote: subprocess.Popen) -> None:
+            while zygote.poll() is None:
+                await asyncio.sleep(1.0)
+            self.say(f"biceps: the process visitors' apps are forked from has ended (exit "
+                     f"status {zygote.returncode}): each visitor's app now starts on its own, "
+                     "which takes longer")
+
+        async def on_shutdown(self, app: web.Application) -> None:
+            # Every visitor's app asked to quit at once, rather than one tab after another.
+            for visit in self.visits:
+                visit.note = "The server has stopped."
+            await asyncio.gather(*(visit.stop() for visit in list(self.visits)))
 
         async def handle_index(self, request: web.Request) -> web.StreamResponse:
             if self.visitors >= max_visitors:
@@ -116,6 +234,7 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
             visit = Visit(self.command, write_bytes=websocket.send_bytes,
                           write_str=websocket.send_str, close=websocket.close,
                           download_manager=self.download_manager, debug=self.debug)
+            self.visits.add(visit)
             try:
                 await visit.start(width, height)
                 await self._process_messages(websocket, visit)
@@ -126,20 +245,25 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
             finally:
                 self.visitors -= 1
                 await visit.stop()
+                self.visits.discard(visit)
             return websocket
 
-    return ClassServer(visit_command(config, scratch), host=host, port=port,
+    return ClassServer(visit_command(config, scratch, limits), host=host, port=port,
                        title=f"biceps: {config.stem}")
 
 
-def serve(config: Path, host: str, port: int, max_visitors: int) -> None:
+def serve(config: Path, host: str, port: int, max_visitors: int, limits: Limits) -> None:
     """Serve the app on ``config`` at ``host``:``port`` until ctrl+c; raises BicepsError if
     textual-serve is missing."""
-    textual_serve()
+    server = textual_serve()
     scratch = Path(tempfile.mkdtemp(prefix="biceps-serve-"))
+    # The environment textual-serve gives each visitor's process, less its terminal size.
+    environment = server.AppService._build_environment(SimpleNamespace(debug=False))
+    zygote = start_zygote(config, scratch, environment)
     try:
-        make_server(config, host, port, max_visitors, scratch).serve()
+        make_server(config, host, port, max_visitors, scratch, limits, zygote).serve()
     except OSError as error:  # the port taken, the address not this machine's
         raise BicepsError(f"cannot serve on {host}:{port}: {error.strerror or error}") from None
     finally:
+        stop_zygote(zygote)
         shutil.rmtree(scratch, ignore_errors=True)

@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from biceps.engine.config import DEFAULT_CONFIG
+from biceps.zygote import VISITOR_NAME
 from browser import free_port, served
 
 pytest.importorskip("aiohttp", reason="comes with textual-serve, the serve extra")
@@ -25,10 +26,14 @@ HALF_BLOCKS = ("\u2580".encode(), "\u2584".encode())  # upper and lower
 
 
 def _visitors() -> list[int]:
-    """The ids of the processes running a visitor's app (``biceps visit``, and the shell
-    textual-serve starts it with) now."""
-    found = subprocess.run(["pgrep", "-f", "biceps visit"], capture_output=True, text=True)
-    return [int(line) for line in found.stdout.split()]
+    """The ids of the processes running a visitor's app now: ``biceps visit`` started
+    afresh, or forked from the zygote (biceps/zygote.py), and the small process that
+    stands for it."""
+    found = []
+    for pattern in (["-f", r"biceps visit|biceps\.zygote .* visit "], ["-x", VISITOR_NAME]):
+        run = subprocess.run(["pgrep", *pattern], capture_output=True, text=True)
+        found += [int(line) for line in run.stdout.split()]
+    return found
 
 
 def _until(condition, what: str, timeout: float = 60.0):
