@@ -8,6 +8,9 @@ PSS, which splits shared pages among their users), read from /proc once every vi
 its picture. All visitors connect at once and press their keys at the same time.
 
     python benchmarks/serve.py [--visitors 10] [--keys 20] [--config FILE] [--public]
+                               [--python PYTHON]
+
+``--python``: the interpreter whose ``biceps`` serves, e.g. another worktree's venv, to compare.
 
 Prints one row per visitor and the medians, with the load average before and after.
 Needs the serve extra (textual-serve, which brings aiohttp).
@@ -24,6 +27,7 @@ import socket
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -117,16 +121,29 @@ def memory(pid: int) -> tuple[float, float]:
 
 
 def visitor_memory(server: int) -> list[tuple[float, float]]:
-    """Each visitor's app process (``biceps visit``): RSS and PSS in MB."""
+    """Each visitor's app process: RSS and PSS in MB. Forked from the zygote, it is named
+    biceps-visitor; started afresh, its command is ``python -m biceps visit``."""
     found = []
     for pid in descendants(server):
         try:
+            name = Path(f"/proc/{pid}/comm").read_text().strip()
             command = Path(f"/proc/{pid}/cmdline").read_bytes().split(b"\0")
         except OSError:
             continue
-        if b"visit" in command and b"-m" in command:
+        if name == "biceps-visitor" or command[1:4] == [b"-m", b"biceps", b"visit"]:
             found.append(memory(pid))
     return found
+
+
+def zygote_memory(server: int) -> tuple[float, float] | None:
+    """The zygote's RSS and PSS in MB, if the server has one."""
+    for pid in descendants(server):
+        try:
+            if Path(f"/proc/{pid}/comm").read_text().strip() == "biceps-zygote":
+                return memory(pid)
+        except OSError:
+            continue
+    return None
 
 
 async def main() -> None:
@@ -134,15 +151,21 @@ async def main() -> None:
     parser.add_argument("--visitors", type=int, default=10)
     parser.add_argument("--keys", type=int, default=20)
     parser.add_argument("--config", default=str(DEFAULT_CONFIG))
+    parser.add_argument("--settle", type=float, default=10.0,
+                        help="seconds between the server listening and the visitors coming")
+    parser.add_argument("--python", default=sys.executable,
+                        help="the interpreter whose biceps serves (default: this one)")
     parser.add_argument("--public", action="store_true",
                         help="the app on Textual's public path (BICEPS_TEXTUAL_PRIVATE=0)")
     options = parser.parse_args()
     port = free_port()
     environment = {**os.environ, "BICEPS_TEXTUAL_PRIVATE": "0" if options.public else "1"}
     server = subprocess.Popen(
-        [sys.executable, "-m", "biceps", "serve", options.config, "--port", str(port),
-         "--max-visitors", str(options.visitors)],
-        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=environment)
+        [os.path.abspath(options.python), "-m", "biceps", "serve",
+         str(Path(options.config).resolve()),
+         "--port", str(port), "--max-visitors", str(options.visitors)],
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=environment,
+        cwd=tempfile.gettempdir())  # not this folder: python -m biceps imports the venv's
     load_before = Path("/proc/loadavg").read_text().split()[:3]
     try:
         for _ in range(600):
@@ -151,6 +174,7 @@ async def main() -> None:
                 break
             except OSError:
                 await asyncio.sleep(0.1)
+        await asyncio.sleep(options.settle)  # as in a class: the server up before the visitors
         everyone_up = asyncio.Barrier(options.visitors + 1)
         measured = asyncio.Event()
         visits = [asyncio.create_task(visit(f"ws://127.0.0.1:{port}/ws", options.keys,
@@ -160,6 +184,7 @@ async def main() -> None:
         await asyncio.sleep(2.0)  # settled: the first frames drawn, the panels filled
         sizes = visitor_memory(server.pid)
         server_rss = memory(server.pid)[0]
+        zygote = zygote_memory(server.pid)
         measured.set()
         results = await asyncio.gather(*visits)
     finally:
@@ -167,7 +192,8 @@ async def main() -> None:
         server.wait(timeout=60)
     load_after = Path("/proc/loadavg").read_text().split()[:3]
     path = "public" if options.public else "private"
-    print(f"biceps serve {Path(options.config).name}: {options.visitors} visitors at once, "
+    print(f"{options.python} -m biceps serve {Path(options.config).name}: "
+          f"{options.visitors} visitors at once, "
           f"{options.keys} keys each, the {path} path; load average {' '.join(load_before)} "
           f"before, {' '.join(load_after)} after, on {os.cpu_count()} cores")
     print(f"{'visitor':>7}  {'first picture s':>15}  {'key median s':>12}  {'key max s':>9}")
@@ -182,7 +208,9 @@ async def main() -> None:
     rss = [size[0] for size in sizes]
     pss = [size[1] for size in sizes]
     print(f"memory per visitor ({len(sizes)} processes): RSS median {statistics.median(rss):.0f} "
-          f"MB, PSS median {statistics.median(pss):.0f} MB; the server {server_rss:.0f} MB RSS")
+          f"MB, PSS median {statistics.median(pss):.0f} MB; the server {server_rss:.0f} MB RSS"
+          + ("" if zygote is None else
+             f"; the zygote {zygote[0]:.0f} MB RSS, {zygote[1]:.0f} MB PSS"))
 
 
 if __name__ == "__main__":

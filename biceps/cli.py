@@ -368,7 +368,7 @@ def _check_terminal() -> None:
 
 VISITOR_MEMORY = 1000
 """MB of memory a visitor's app may use unless ``biceps serve`` is told otherwise."""
-VISITOR_MEMORY_LEAST = 600
+VISITOR_MEMORY_LEAST = 300
 """MB of memory a visitor's app needs at the least."""
 
 
@@ -385,12 +385,12 @@ VISITOR_MEMORY_LEAST = 600
               default=VISITOR_MEMORY, show_default=True, metavar="MB",
               help="The memory each visitor's app may use, in MB: an export or an animation "
               "that needs more is refused in its tab.")
-@click.option("--visitor-minutes", type=click.IntRange(1, None), default=120,
+@click.option("--visitor-minutes", type=_FiniteFloat(0.1, 10080), default=120,
               show_default=True, metavar="MINUTES",
               help="How long each visitor's app runs before it ends, saying so in its tab.")
 @_refusals_exit_2
 def serve(config: Path, host: str, port: int, max_visitors: int, visitor_memory: int,
-          visitor_minutes: int) -> None:
+          visitor_minutes: float) -> None:
     """Serve the app on CONFIG to web browsers (needs the serve extra: textual-serve): each
     visitor gets the app in a browser tab, its exports as downloads, its files in a folder of
     its own, removed when the tab closes."""

@@ -38,7 +38,7 @@ class Limits:
     --memory``), for ``minutes`` minutes."""
 
     memory: int
-    minutes: int
+    minutes: float
 
 FULL_PAGE = """<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>biceps: full</title>
@@ -104,8 +104,9 @@ def stop_zygote(zygote: subprocess.Popen) -> None:
 
 
 def ending_note(status: int | None, limits: Limits) -> str | None:
-    """What a visitor is told when its app has ended with ``status`` (None: unknown)."""
-    if status == 0:
+    """What a visitor is told when its app has ended with ``status`` (None: it has not ended
+    yet, and is about to be killed)."""
+    if status == 0 or status is None:
         return None
     return (f"biceps ended on an error (exit status {status}). Each visitor may use "
             f"{limits.memory} MB of memory here: a picture or an animation larger than "
@@ -130,13 +131,13 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
                 limits.minutes * 60, self._time_up)
 
         def _time_up(self) -> None:
-            self.note = (f"Your {limits.minutes} minutes are up, the most a visitor has on "
+            self.note = (f"Your {limits.minutes:g} minutes are up, the most a visitor has on "
                          "this server. Reload the page to start again.")
             if self._stopping is None:
                 self._stopping = asyncio.ensure_future(self._stop())
 
         async def on_meta(self, data: bytes) -> None:
-            if b'"exit"' in data and json.loads(data)["type"] == "exit":
+            if json.loads(data).get("type") == "exit":
                 return  # the page is closed once the process ends, after the note
             await super().on_meta(data)
 
@@ -183,7 +184,7 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
         async def on_startup(self, app: web.Application) -> None:
             address = f"[{host}]" if ":" in host else host
             self.say(f"biceps: serving {config.name} at http://{address}:{port}/ to at most "
-                     f"{max_visitors} visitors at once, each for {limits.minutes} minutes "
+                     f"{max_visitors} visitors at once, each for {limits.minutes:g} minutes "
                      f"with {limits.memory} MB of memory; ctrl+c stops")
             if zygote is not None:
                 self.watching = asyncio.create_task(self.watch(zygote))

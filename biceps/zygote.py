@@ -236,7 +236,7 @@ def _preload(config: str) -> None:
     """Import what a visitor's app imports, build ``config``'s model and draw a small
     picture of it through the half-block encoder, so that every kernel of a frame is
     loaded from numba's cache (compiled into it if it is cold); without starting a thread:
-    a picture this small is drawn in one band, on this thread."""
+    drawn with one drawing thread, this one."""
     import threading
 
     import biceps.cli  # noqa: F401
@@ -248,7 +248,14 @@ def _preload(config: str) -> None:
     from biceps.tui.pixels import HalfBlocks
     from biceps.tui.sgr import minimized
 
-    picture = SceneRenderer().render(Scene.of(load_config(config)), 8, 8)
+    asked = os.environ.get("BICEPS_THREADS")
+    os.environ["BICEPS_THREADS"] = "1"  # every stage on this thread, even a large mesh's
+    try:
+        picture = SceneRenderer().render(Scene.of(load_config(config)), 8, 8)
+    finally:
+        os.environ.pop("BICEPS_THREADS")
+        if asked is not None:
+            os.environ["BICEPS_THREADS"] = asked
     HalfBlocks().encode(picture)
     minimized("\x1b[1m \x1b[0m")  # the output minimizer's kernel
     if threading.active_count() > 1:

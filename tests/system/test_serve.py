@@ -6,23 +6,25 @@ from __future__ import annotations
 
 import asyncio
 import os
+import re
+import signal
 import socket
 import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
 import pytest
 
 from biceps.engine.config import DEFAULT_CONFIG
-from biceps.zygote import VISITOR_NAME
+from biceps.zygote import VISITOR_NAME, ZYGOTE_NAME
 from browser import free_port, served
 
 pytest.importorskip("aiohttp", reason="comes with textual-serve, the serve extra")
 import aiohttp  # noqa: E402
 
 HALF_BLOCKS = ("\u2580".encode(), "\u2584".encode())  # upper and lower
+CURSOR_AT = re.compile(rb"\x1b\[\d+;(\d+)H")
 
 
 def _visitors() -> list[int]:
@@ -45,13 +47,15 @@ def _until(condition, what: str, timeout: float = 60.0):
     raise AssertionError(f"never came: {what}")
 
 
-async def _first_picture(websocket) -> None:
-    """Read the visitor's terminal until the picture's half-blocks come."""
+async def _first_picture(websocket) -> bytes:
+    """Read the visitor's terminal until the picture's half-blocks come; what it read."""
+    seen = b""
     while True:
         message = await asyncio.wait_for(websocket.receive(), 120)
         assert message.type == aiohttp.WSMsgType.BINARY, message
+        seen += message.data
         if any(block in message.data for block in HALF_BLOCKS):
-            return
+            return seen
 
 
 def test_without_the_extra_the_message_names_it(tmp_path):
@@ -126,9 +130,21 @@ def _listening(port: int) -> bool:
         return False
 
 
+def _scratch_of(pids: set[int]) -> set[Path]:
+    """The scratch folders named on the command lines of ``pids``."""
+    found = set()
+    for pid in pids:
+        try:
+            words = Path(f"/proc/{pid}/cmdline").read_bytes().decode().split("\0")
+        except OSError:
+            continue
+        if "--scratch" in words:
+            found.add(Path(words[words.index("--scratch") + 1]))
+    return found
+
+
 def test_a_full_server_says_so_and_a_closed_page_ends_its_visitors_process(tmp_path):
     before = set(_visitors())
-    folders = set(Path(tempfile.gettempdir()).glob("biceps-serve-*/visitor-*"))
     with served(DEFAULT_CONFIG, "--max-visitors", "1") as url:
         socket_url = url.replace("http", "ws") + "ws?width=100&height=30"
 
@@ -138,6 +154,10 @@ def test_a_full_server_says_so_and_a_closed_page_ends_its_visitors_process(tmp_p
                     await _first_picture(first)
                     own = set(_visitors()) - before  # its shell, and the app
                     assert own
+                    # This server's scratch folder (another's, on a shared machine, has
+                    # visitors of its own).
+                    scratch.extend(_scratch_of(own))
+                    assert list(scratch[0].glob("visitor-*"))
                     async with session.get(url) as response:
                         status, page = response.status, await response.text()
                     async with session.ws_connect(socket_url) as second:
@@ -145,11 +165,12 @@ def test_a_full_server_says_so_and_a_closed_page_ends_its_visitors_process(tmp_p
                         turned_away = b"full" in message.data
                 return own, status, page, turned_away
 
+        scratch: list[Path] = []
         own, status, page, turned_away = asyncio.run(visit())
         assert status == 503 and "All 1 places are taken" in page
         assert turned_away
         _until(lambda: not own & set(_visitors()), "the visitor's process ending")
-        left = set(Path(tempfile.gettempdir()).glob("biceps-serve-*/visitor-*")) - folders
+        left = list(scratch[0].glob("visitor-*"))
         assert not left, left
 
         async def page_again() -> int:
@@ -158,3 +179,167 @@ def test_a_full_server_says_so_and_a_closed_page_ends_its_visitors_process(tmp_p
                     return response.status
 
         assert asyncio.run(page_again()) == 200
+
+
+def _named(name: str) -> dict[int, int]:
+    """The processes named ``name`` now (``ps``'s name, not the command line): pid: parent."""
+    found = {}
+    for entry in Path("/proc").iterdir():
+        try:
+            if entry.name.isdigit() and (entry / "comm").read_text().strip() == name:
+                found[int(entry.name)] = _parent(entry)
+        except (OSError, IndexError, ValueError):
+            continue
+    return found
+
+
+def _parent(process: Path) -> int:
+    """The parent's pid of the process whose /proc folder is ``process``."""
+    return int((process / "stat").read_text().rsplit(")", 1)[1].split()[1])
+
+
+def _alive(pid: int) -> bool:
+    """Whether ``pid`` runs (a zombie, ended but not yet reaped, does not)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def _tree(root: int) -> set[int]:
+    """``root`` and every process under it now."""
+    children: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        try:
+            if entry.name.isdigit():
+                children.setdefault(_parent(entry), []).append(int(entry.name))
+        except (OSError, IndexError, ValueError):
+            continue
+    found, todo = {root}, [root]
+    while todo:
+        for child in children.get(todo.pop(), []):
+            found.add(child)
+            todo.append(child)
+    return found
+
+
+async def _read_until(websocket, wanted: bytes, timeout: float = 120) -> bytes:
+    """The visitor's terminal's output until ``wanted`` comes in it."""
+    seen = b""
+    deadline = time.monotonic() + timeout
+    while wanted not in seen:
+        message = await asyncio.wait_for(websocket.receive(), deadline - time.monotonic())
+        if message.type in (aiohttp.WSMsgType.CLOSE, aiohttp.WSMsgType.CLOSED):
+            raise AssertionError(f"closed before {wanted!r} came: {seen[-400:]!r}")
+        if message.type == aiohttp.WSMsgType.BINARY:
+            seen += message.data
+    return seen
+
+
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM])
+def test_visitors_are_forked_from_the_zygote_and_none_outlives_the_server(stop):
+    port = free_port()
+    server = subprocess.Popen(
+        [sys.executable, "-m", "biceps", "serve", str(DEFAULT_CONFIG), "--port", str(port)],
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        _until(lambda: _listening(port), "the server")
+        _until(lambda: any(parent == server.pid for parent in _named(ZYGOTE_NAME).values()),
+               "the zygote")
+        zygote = next(pid for pid, parent in _named(ZYGOTE_NAME).items()
+                      if parent == server.pid)
+
+        async def two_visitors() -> set[int]:
+            async with aiohttp.ClientSession() as session:
+                sockets = [await session.ws_connect(
+                    f"ws://127.0.0.1:{port}/ws?width={width}&height=30") for width in (60, 100)]
+                for websocket, width in zip(sockets, (60, 100)):
+                    drawn = await _first_picture(websocket)
+                    # Each on a terminal of its own size: the cursor sent to column 60 at
+                    # most in the first, farther in the second.
+                    farthest = max(int(column) for column in CURSOR_AT.findall(drawn))
+                    assert farthest <= width
+                    assert farthest > 60 or width == 60
+                everyone = _tree(server.pid)
+                apps = {pid for pid, parent in _named(VISITOR_NAME).items() if parent == zygote}
+                assert len(apps) == 2, apps  # each a child of the zygote, not started afresh
+                server.send_signal(stop)  # with both pages still open
+                for websocket in sockets:
+                    await websocket.close()
+                return everyone
+
+        everyone = asyncio.run(two_visitors())
+        server.wait(timeout=60)
+        _until(lambda: not any(_alive(pid) for pid in everyone), "every process ending", 30)
+    finally:
+        if server.poll() is None:
+            server.kill()
+            server.wait()
+
+
+def test_without_the_zygote_visitors_still_get_the_app_and_the_server_says_so(tmp_path):
+    log = tmp_path / "server.log"
+    with served(DEFAULT_CONFIG, log=log) as url:
+        _until(lambda: _named(ZYGOTE_NAME).keys() & _tree_of_server(url), "the zygote")
+        for pid in _named(ZYGOTE_NAME).keys() & _tree_of_server(url):
+            os.kill(pid, signal.SIGKILL)
+        _until(lambda: b"each visitor's app now starts on its own" in log.read_bytes(),
+               "the server saying the zygote ended")
+
+        async def visit() -> None:
+            async with aiohttp.ClientSession() as session:
+                async with session.ws_connect(url.replace("http", "ws") + "ws") as websocket:
+                    await _first_picture(websocket)
+
+        asyncio.run(visit())
+
+
+def _tree_of_server(url: str) -> set[int]:
+    """The processes under the server listening at ``url``."""
+    port = url.rsplit(":", 1)[1].strip("/")
+    found = subprocess.run(["pgrep", "-f", f"biceps serve .*--port {port}"],
+                           capture_output=True, text=True)
+    return set().union(*(_tree(int(pid)) for pid in found.stdout.split()))
+
+
+def test_a_visitor_over_its_memory_is_refused_the_export_and_goes_on(tmp_path):
+    with served(DEFAULT_CONFIG, "--visitor-memory", "400") as url:
+        socket_url = url.replace("http", "ws") + "ws?width=100&height=30"
+
+        async def visit() -> None:
+            async with aiohttp.ClientSession() as session:
+                async with session.ws_connect(socket_url) as websocket, \
+                        session.ws_connect(socket_url) as other:
+                    await _first_picture(websocket)
+                    await _first_picture(other)
+                    # An 8000x6000 picture is within what a command may draw, not within
+                    # 400 MB.
+                    await websocket.send_json(["stdin", "e"])
+                    await _read_until(websocket, b"Export a PNG")
+                    for key in ("\t", "\x7f" * 20, "8000x6000", "\r"):
+                        await websocket.send_json(["stdin", key])
+                        await asyncio.sleep(0.3)
+                    await _read_until(websocket, b"not enough memory for a 8000x6000 picture")
+                    for visitor in (websocket, other):  # both go on: a key, a new picture
+                        await visitor.send_json(["stdin", "c"])
+                        await _first_picture(visitor)
+
+        asyncio.run(visit())
+
+
+def test_a_visitor_is_told_when_its_time_is_up_and_its_process_ends():
+    before = set(_visitors())
+    with served(DEFAULT_CONFIG, "--visitor-minutes", "0.2") as url:
+
+        async def visit() -> bytes:
+            async with aiohttp.ClientSession() as session:
+                async with session.ws_connect(url.replace("http", "ws") + "ws") as websocket:
+                    said = await _read_until(websocket, b"minutes are up", 120)
+                    message = await asyncio.wait_for(websocket.receive(), 30)
+                    assert message.type in (aiohttp.WSMsgType.CLOSE, aiohttp.WSMsgType.CLOSED)
+                    return said
+
+        said = asyncio.run(visit())
+        assert b"Your 0.2 minutes are up" in said
+        assert any(block in said for block in HALF_BLOCKS)  # the app, until then
+        _until(lambda: not set(_visitors()) - before, "the visitor's process ending")
