@@ -40,6 +40,9 @@ class Limits:
     memory: int
     minutes: float
 
+CLEAR = "\x1b[?1049l\x1b[2J\x1b[H"
+"""Back from the app's screen, cleared, the cursor at the top left."""
+
 FULL_PAGE = """<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>biceps: full</title>
 <style>body {{ background: #0c181f; color: #eee; font: 18px monospace; margin: 3em; }}</style>
@@ -125,6 +128,10 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
         _time_limit: asyncio.TimerHandle | None = None
         _stopping: asyncio.Future | None = None
 
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            super().__init__(*args, **kwargs)
+            self.ended = asyncio.Event()  # the app's process has ended: its place is free
+
         async def start(self, width: int, height: int) -> None:
             await super().start(width, height)
             self._time_limit = asyncio.get_running_loop().call_later(
@@ -147,13 +154,22 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
                 status = await asyncio.wait_for(self._process.wait(), QUIT_GRACE)
             except asyncio.TimeoutError:
                 status = None
+            self.ended.set()
             note = self.note or ending_note(status, limits)
             try:
-                if note:
-                    await self.remote_write_bytes(f"\r\n{note}\r\n".encode())
-                await self.remote_close()
+                if note:  # left on the page, which textual-serve's "Session ended" would hide;
+                    # alone on it, so that the app's last frame does not look alive
+                    await self.remote_write_bytes(f"{CLEAR}{note}\r\n".encode())
+                else:
+                    await self.remote_close()
             except ConnectionError:
                 pass  # the tab has closed
+
+        async def send_bytes(self, data: bytes) -> bool:
+            return not self.ended.is_set() and await super().send_bytes(data)
+
+        async def send_meta(self, data: dict) -> bool:
+            return not self.ended.is_set() and await super().send_meta(data)
 
         async def stop(self) -> None:
             # Stopped once, whoever asks first (the tab closing, the time limit, the server
@@ -177,9 +193,14 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
                 await process.wait()
 
     class ClassServer(server.Server):
-        visitors = 0
-        visits: set[Visit] = set()
+        visits: set[Visit] = set()  # every open page's
         watching: asyncio.Task | None = None
+
+        @property
+        def visitors(self) -> int:
+            """The visitors whose apps run: a page left open after its app ended holds no
+            place."""
+            return sum(not visit.ended.is_set() for visit in self.visits)
 
         async def on_startup(self, app: web.Application) -> None:
             address = f"[{host}]" if ":" in host else host
@@ -229,13 +250,12 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
                     f"\r\nbiceps is full: all {max_visitors} places are taken.\r\n".encode())
                 await websocket.close()
                 return websocket
-            self.visitors += 1
             width = server.to_int(request.query.get("width", "80"), 80)
             height = server.to_int(request.query.get("height", "24"), 24)
             visit = Visit(self.command, write_bytes=websocket.send_bytes,
                           write_str=websocket.send_str, close=websocket.close,
                           download_manager=self.download_manager, debug=self.debug)
-            self.visits.add(visit)
+            self.visits.add(visit)  # its place taken before anything is awaited
             try:
                 await visit.start(width, height)
                 await self._process_messages(websocket, visit)
@@ -244,7 +264,6 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
             except Exception as error:  # one visitor's fault must not stop the server
                 server.log.exception(error)
             finally:
-                self.visitors -= 1
                 await visit.stop()
                 self.visits.discard(visit)
             return websocket
