@@ -74,12 +74,13 @@ def visit_command(config: Path, scratch: Path, limits: Limits) -> str:
     from the zygote listening in ``scratch`` (``biceps/zygote.py``), or started afresh
     where it does not answer. The shell becomes it (exec), so that it is the server's child
     and ends with the server."""
-    return "exec " + shlex.join([sys.executable, "-m", "biceps.zygote", str(zygote_socket(scratch)),
-                       "visit", str(config), "--scratch", str(scratch),
-                       "--memory", str(limits.memory)])
+    return "exec " + shlex.join([
+        sys.executable, "-m", "biceps.zygote", str(zygote_socket(scratch)),
+        "visit", str(config), "--scratch", str(scratch), "--memory", str(limits.memory)])
 
 
 def zygote_socket(scratch: Path) -> Path:
+    """Where the zygote of the server whose scratch folder is ``scratch`` listens."""
     return scratch / "zygote"
 
 

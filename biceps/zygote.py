@@ -157,12 +157,7 @@ def _fork(connection: socket.socket, inherited: list, children: dict) -> int | N
         return None
     pid = os.fork()
     if pid == 0:
-        # None of the zygote's sockets, nor the other visitors' pidfds, stay open here.
-        for held in inherited:
-            held.close()
-        for handle in children:
-            os.close(handle)
-        _become_visitor(json.loads(request), fds)  # never returns
+        _become_visitor(request, fds, inherited, list(children))  # never returns
     for fd in fds:
         os.close(fd)
     return pid
@@ -175,11 +170,18 @@ def _tell(connection: socket.socket, number: int) -> None:
         pass  # the small process has gone: nobody to tell
 
 
-def _become_visitor(request: dict, fds: list[int]) -> None:
+def _become_visitor(request: bytes, fds: list[int], inherited: list, handles: list[int]) -> None:
     """In the forked child: take the visitor's pipes, environment and folder, and run the
-    command it asked for; exit with its status, never returning into the zygote's loop."""
+    command it asked for; exit with its status, never returning into the zygote's loop.
+    ``inherited``: the zygote's sockets and selector, and ``handles``, the other children's
+    pidfds, none of which stays open here."""
     status = 1
     try:
+        for held in inherited:
+            held.close()
+        for handle in handles:
+            os.close(handle)
+        asked = json.loads(request)
         os.setsid()  # the server's terminal's ctrl+c reaches the server, which ends this
         _name_this_process(VISITOR_NAME)
         for number, fd in enumerate(fds):
@@ -188,11 +190,11 @@ def _become_visitor(request: dict, fds: list[int]) -> None:
         for number in (signal.SIGTERM, signal.SIGINT):
             signal.signal(number, signal.SIG_DFL)
         os.environ.clear()
-        os.environ.update(request["environment"])
-        os.chdir(request["folder"])
+        os.environ.update(asked["environment"])
+        os.chdir(asked["folder"])
         from biceps.cli import main
 
-        main(args=request["arguments"], prog_name="biceps")
+        main(args=asked["arguments"], prog_name="biceps")
         status = 0
     except SystemExit as leaving:  # as Python ends on it
         status = leaving.code if isinstance(leaving.code, int) else leaving.code is not None
