@@ -368,7 +368,7 @@ def _check_terminal() -> None:
 
 VISITOR_MEMORY = 1000
 """MB of memory a visitor's app may use unless ``biceps serve`` is told otherwise."""
-VISITOR_MEMORY_LEAST = 300
+VISITOR_MEMORY_LEAST = 400
 """MB of memory a visitor's app needs at the least."""
 
 

@@ -303,7 +303,7 @@ def _tree_of_server(url: str) -> set[int]:
 
 
 def test_a_visitor_over_its_memory_is_refused_the_export_and_goes_on(tmp_path):
-    with served(DEFAULT_CONFIG, "--visitor-memory", "400") as url:
+    with served(DEFAULT_CONFIG, "--visitor-memory", "500") as url:
         socket_url = url.replace("http", "ws") + "ws?width=100&height=30"
 
         async def visit() -> None:
@@ -312,8 +312,8 @@ def test_a_visitor_over_its_memory_is_refused_the_export_and_goes_on(tmp_path):
                         session.ws_connect(socket_url) as other:
                     await _first_picture(websocket)
                     await _first_picture(other)
-                    # An 8000x6000 picture is within what a command may draw, not within
-                    # 400 MB.
+                    # An 8000x6000 picture (over 300 MB more) is within what a command may
+                    # draw, not within 500 MB.
                     await websocket.send_json(["stdin", "e"])
                     await _read_until(websocket, b"Export a PNG")
                     for key in ("\t", "\x7f" * 20, "8000x6000", "\r"):
