@@ -113,8 +113,8 @@ def ending_note(status: int | None, limits: Limits) -> str | None:
     if status == 0 or status is None:
         return None
     return (f"biceps ended on an error (exit status {status}). Each visitor may use "
-            f"{limits.memory} MB of memory here: a picture or an animation larger than "
-            "that fits cannot be made. Reload the page to start again.")
+            f"{limits.memory} MB of memory here, and a picture or an animation that needs "
+            "more is refused. Reload the page to start again.")
 
 
 def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: Path,
