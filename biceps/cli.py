@@ -394,10 +394,12 @@ def serve(config: Path, host: str, port: int, max_visitors: int) -> None:
 @config_argument
 @click.option("--scratch", type=click.Path(path_type=Path, file_okay=False, exists=True),
               required=True)
+@click.option("--folder", type=click.Path(path_type=Path, file_okay=False, exists=True))
 @_refusals_exit_2
-def visit(config: Path, scratch: Path) -> None:
+def visit(config: Path, scratch: Path, folder: Path | None) -> None:
     """One visitor's app under biceps serve: Textual's web driver on stdin and stdout, files
-    confined to a folder of its own under SCRATCH, removed when the visitor leaves."""
+    confined to a folder of its own under SCRATCH (FOLDER, made by the server, which writes
+    the visitor's uploads there), removed when the visitor leaves."""
     import shutil
     import tempfile
 
@@ -406,7 +408,7 @@ def visit(config: Path, scratch: Path) -> None:
     from biceps.tui.app import run_app
 
     loaded = load_config(config)
-    own = Path(tempfile.mkdtemp(prefix="visitor-", dir=scratch))
+    own = folder or Path(tempfile.mkdtemp(prefix="visitor-", dir=scratch))
     try:
         visitor.confine_to(own)
         # The browser's terminal (xterm.js) shows 24-bit colour and text, never images:
