@@ -47,9 +47,11 @@ def confined(path: Path) -> Path:
 
 
 def models_in(folder: Path) -> list[str]:
-    """The names of the models (``*.toml``, not hidden) in ``folder``, sorted."""
+    """The names of the models (``*.toml`` files, not hidden, not links) in ``folder``,
+    sorted."""
     return sorted(entry.name for entry in folder.iterdir()
-                  if entry.suffix.lower() == ".toml" and not entry.name.startswith("."))
+                  if entry.suffix.lower() == ".toml" and not entry.name.startswith(".")
+                  and entry.is_file() and not entry.is_symlink())
 
 
 def models() -> list[str]:
