@@ -169,7 +169,7 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
             except uploads.UploadRefused as refusal:
                 return web.Response(status=refusal.status, text=f"Not uploaded: {refusal}")
             except OSError as error:  # the folder gone with its visitor, the disk full
-                return web.Response(status=500, text=f"Not uploaded: {error.strerror}")
+                return web.Response(status=500, text=f"Not uploaded: {error.strerror or error}")
             earlier = ", replacing the earlier one" if replaced else ""
             return web.Response(text=f"{printable(name)} is in your folder{earlier}: open it "
                                 "in the app with ctrl+o")
@@ -187,10 +187,10 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
                 await websocket.send_bytes(b"\r\nThis page is out of date: reload it.\r\n")
                 await websocket.close()
                 return websocket
+            folder = Path(tempfile.mkdtemp(prefix="visitor-", dir=scratch))
             self.visitors += 1
             width = server.to_int(request.query.get("width", "80"), 80)
             height = server.to_int(request.query.get("height", "24"), 24)
-            folder = Path(tempfile.mkdtemp(prefix="visitor-", dir=scratch))
             if token is not None:
                 self.folders[token] = folder
             visit = Visit(visit_command(config, scratch, folder),

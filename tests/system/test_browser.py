@@ -104,14 +104,19 @@ def _shows(driver, scene: Scene, tmp_path: Path, name: str) -> float:
                              f"channel (the bound {MATCH}); see {tmp_path}") from None
 
 
-@pytest.mark.parametrize("path", ["private", "public"])
-def test_a_browser_shows_the_app_turns_contracts_and_downloads_a_png(path, tmp_path):
+def _needs_the_browser() -> None:
+    """Skip without Chromium and its driver, selenium or textual-serve; in CI, fail."""
     gone = missing()
     if gone:
         if os.environ.get("CI"):
             pytest.fail(f"missing {', '.join(gone)}: .ci/run installs them")
         pytest.skip(f"needs {', '.join(gone)} (Debian's chromium and chromium-driver, the "
                     "test extra's selenium and textual-serve)")
+
+
+@pytest.mark.parametrize("path", ["private", "public"])
+def test_a_browser_shows_the_app_turns_contracts_and_downloads_a_png(path, tmp_path):
+    _needs_the_browser()
     downloads = tmp_path / "downloads"
     downloads.mkdir()
     start = Scene.of(load_config(DEFAULT_CONFIG))
@@ -172,12 +177,7 @@ def _upload_status(driver, expected: str, kind: str) -> str:
 
 
 def test_a_browser_uploads_a_model_opens_it_and_turns_it_with_the_mouse(tmp_path):
-    gone = missing()
-    if gone:
-        if os.environ.get("CI"):
-            pytest.fail(f"missing {', '.join(gone)}: .ci/run installs them")
-        pytest.skip(f"needs {', '.join(gone)} (Debian's chromium and chromium-driver, the "
-                    "test extra's selenium and textual-serve)")
+    _needs_the_browser()
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.by import By
     from selenium.webdriver.common.keys import Keys
