@@ -127,7 +127,8 @@ def test_bad_uploads_are_refused_with_the_reason_and_write_nothing(server, name,
     assert got == status
     assert said.startswith("Not uploaded: ") and reason in said
     # Nothing new or changed (earlier tests' visitors' folders may go meanwhile).
-    assert {path for path, data in after.items() if before.get(path, b"") != data} == set()
+    assert {path for path, data in after.items()
+            if path not in before or before[path] != data} == set()
 
 
 def test_a_link_in_the_folder_is_not_written_through(server, tmp_path):
