@@ -53,7 +53,8 @@ def main() -> int:
                 print(f"{harness:4} {model_path.name:11} seed {seed}: "
                       f"{'ok  ' if outcome.passed else 'FAIL'} alive after: "
                       f"{outcome.alive_after}, exit {outcome.exit_status}, {quit_in}, model "
-                      f"{'untouched' if outcome.model_untouched else 'CHANGED'}; "
+                      f"{'untouched' if outcome.model_untouched else 'CHANGED'}, "
+                      f"{outcome.quits_held} quits held; "
                       f"{time.monotonic() - start:.0f} s; sent "
                       + ", ".join(f"{count} {kind}" for kind, count in
                                   sorted(outcome.sent.items())), flush=True)

@@ -409,12 +409,14 @@ def serve(config: Path, host: str, port: int, max_visitors: int, visitor_memory:
 @config_argument
 @click.option("--scratch", type=click.Path(path_type=Path, file_okay=False, exists=True),
               required=True)
+@click.option("--folder", type=click.Path(path_type=Path, file_okay=False, exists=True))
 @click.option("--memory", type=click.IntRange(VISITOR_MEMORY_LEAST, None), metavar="MB",
               help="The most memory this process may use, in MB (its data, RLIMIT_DATA).")
 @_refusals_exit_2
-def visit(config: Path, scratch: Path, memory: int | None) -> None:
+def visit(config: Path, scratch: Path, folder: Path | None, memory: int | None) -> None:
     """One visitor's app under biceps serve: Textual's web driver on stdin and stdout, files
-    confined to a folder of its own under SCRATCH, removed when the visitor leaves."""
+    confined to a folder of its own under SCRATCH (FOLDER, made by the server, which writes
+    the visitor's uploads there), removed when the visitor leaves."""
     import resource
     import shutil
     import tempfile
@@ -427,7 +429,7 @@ def visit(config: Path, scratch: Path, memory: int | None) -> None:
     from biceps.tui.app import run_app
 
     loaded = load_config(config)
-    own = Path(tempfile.mkdtemp(prefix="visitor-", dir=scratch))
+    own = folder or Path(tempfile.mkdtemp(prefix="visitor-", dir=scratch))
     try:
         visitor.confine_to(own)
         # The browser's terminal (xterm.js) shows 24-bit colour and text, never images:

@@ -5,6 +5,12 @@ under Textual's web driver, in a scratch folder of its own under the server's, w
 removed when the visitor leaves. The page's websocket is that process's terminal; closing
 the tab ends it. At most ``max_visitors`` at once: the next is shown a page saying so.
 
+Each page is given a token of its own, unguessable, in its websocket's address and in the
+address its bar uploads models to (``/upload/TOKEN``): while that page's visitor is there,
+an upload with its token is written into its folder (``biceps/uploads.py``), and one with
+any other token is refused. A websocket at ``/ws`` without a token gets the app, but no
+uploads.
+
 textual-serve is an optional extra (``pip install 'biceps[serve]'``); this module imports it
 only when the server starts.
 """
@@ -13,23 +19,32 @@ from __future__ import annotations
 
 import asyncio
 import json
+import secrets
 import shlex
 import shutil
 import socket
 import subprocess
 import sys
 import tempfile
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
+from urllib.parse import unquote
 
 from biceps.engine.errors import BicepsError
+from biceps.engine.names import printable
 
 EXTRA = "serve"
 LOCAL_HOSTS = ("localhost", "127.0.0.1", "::1")
 QUIT_GRACE = 5.0
 """Seconds a visitor's process has to end after its tab closed before it is killed."""
+PAGE_LIFE = 300.0
+"""Seconds a page's token waits for its websocket; a page connects at once when it loads."""
+MOST_PAGES = 1000
+"""Tokens at most waiting for their websockets (pages loaded, their tabs closed at once)."""
+PAGE = Path(__file__).with_name("templates")
 
 
 @dataclass(frozen=True)
@@ -69,14 +84,25 @@ def is_local(host: str) -> bool:
     return host in LOCAL_HOSTS or host.startswith("127.")
 
 
-def visit_command(config: Path, scratch: Path, limits: Limits) -> str:
+def visit_command(config: Path, scratch: Path, limits: Limits, folder: Path | None = None) -> str:
     """The shell command textual-serve runs for each visitor: ``biceps visit``, forked
     from the zygote listening in ``scratch`` (``biceps/zygote.py``), or started afresh
-    where it does not answer. The shell becomes it (exec), so that it is the server's child
-    and ends with the server."""
-    return "exec " + shlex.join([
-        sys.executable, "-m", "biceps.zygote", str(zygote_socket(scratch)),
-        "visit", str(config), "--scratch", str(scratch), "--memory", str(limits.memory)])
+    where it does not answer; in ``folder`` (the server made it, and writes the visitor's
+    uploads into it), or without one in a new folder under ``scratch``. The shell becomes
+    it (exec), so that it is the server's child and ends with the server."""
+    words = [sys.executable, "-m", "biceps.zygote", str(zygote_socket(scratch)),
+             "visit", str(config), "--scratch", str(scratch), "--memory", str(limits.memory)]
+    return "exec " + shlex.join(words + (["--folder", str(folder)] if folder else []))
+
+
+async def _read_at_most(content: Any, largest: int) -> bytes:
+    """The request body from ``content`` (aiohttp's StreamReader), stopping once it is
+    longer than ``largest`` bytes."""
+    chunks, length = [], 0
+    while length <= largest and (chunk := await content.read(64 * 1024)):
+        chunks.append(chunk)
+        length += len(chunk)
+    return b"".join(chunks)
 
 
 def zygote_socket(scratch: Path) -> Path:
@@ -123,6 +149,9 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
     server = textual_serve()
     from aiohttp import web
     import aiohttp_jinja2
+
+    from biceps import uploads
+    from biceps.engine.config import LARGEST_FILE
 
     class Visit(server.AppService):
         note: str | None = None  # said in the visitor's terminal once its app has ended
@@ -194,14 +223,27 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
                 await process.wait()
 
     class ClassServer(server.Server):
-        visits: set[Visit] = set()  # every open page's
         watching: asyncio.Task | None = None
+
+        def __init__(self, *args: Any, **options: Any) -> None:
+            super().__init__(*args, **options)
+            self.visits: set[Visit] = set()  # every open page's
+            self.pages: dict[str, float] = {}
+            """Each page's token, waiting for its websocket, and when it was made."""
+            self.folders: dict[str, Path] = {}
+            """Each visitor's folder by its page's token, while the visitor is there."""
 
         @property
         def visitors(self) -> int:
             """The visitors whose apps run: a page left open after its app ended holds no
             place."""
             return sum(not visit.ended.is_set() for visit in self.visits)
+
+        async def _make_app(self) -> web.Application:
+            app = await super()._make_app()
+            app.add_routes([web.get("/ws/{token}", self.handle_websocket),
+                            web.post("/upload/{token}", self.handle_upload)])
+            return app
 
         async def on_startup(self, app: web.Application) -> None:
             address = f"[{host}]" if ":" in host else host
@@ -235,13 +277,44 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
             # the server binds to: 0.0.0.0 is no address a browser can reach.
             origin = f"{request.scheme}://{request.host}"
             scheme = "wss" if request.scheme == "https" else "ws"
+            token = self._new_page()
             context = {
                 "font_size": server.to_int(request.query.get("fontsize", "16"), 16),
-                "app_websocket_url": f"{scheme}://{request.host}/ws",
+                "app_websocket_url": f"{scheme}://{request.host}/ws/{token}",
+                "upload_url": f"{origin}/upload/{token}",
+                "largest_upload": LARGEST_FILE,
                 "config": {"static": {"url": f"{origin}/static/"}},
                 "application": {"name": self.title},
             }
             return aiohttp_jinja2.render_template("app_index.html", request, context)
+
+        def _new_page(self) -> str:
+            """A token for a new page, after forgetting those whose websockets never came."""
+            now = time.monotonic()
+            for token, made in list(self.pages.items()):
+                if now - made > PAGE_LIFE or len(self.pages) >= MOST_PAGES:
+                    del self.pages[token]  # the oldest first: a dict keeps its order
+            token = secrets.token_urlsafe(32)
+            self.pages[token] = now
+            return token
+
+        async def handle_upload(self, request: web.Request) -> web.Response:
+            folder = self.folders.get(request.match_info["token"])
+            if folder is None:
+                return web.Response(status=403, text="Not uploaded: this page's visit has "
+                                    "ended, or never began; reload the page")
+            try:
+                name = uploads.upload_name(unquote(request.headers.get("X-File-Name", "")))
+                uploads.check_size(request.content_length or 0)
+                data = await _read_at_most(request.content, LARGEST_FILE)
+                replaced = await asyncio.to_thread(uploads.save_upload, folder, name, data)
+            except uploads.UploadRefused as refusal:
+                return web.Response(status=refusal.status, text=f"Not uploaded: {refusal}")
+            except OSError as error:  # the folder gone with its visitor, the disk full
+                return web.Response(status=500, text=f"Not uploaded: {error.strerror or error}")
+            earlier = ", replacing the earlier one" if replaced else ""
+            return web.Response(text=f"{printable(name)} is in your folder{earlier}: open it "
+                                "in the app with ctrl+o")
 
         async def handle_websocket(self, request: web.Request) -> web.WebSocketResponse:
             websocket = web.WebSocketResponse(heartbeat=15)
@@ -251,11 +324,20 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
                     f"\r\nbiceps is full: all {max_visitors} places are taken.\r\n".encode())
                 await websocket.close()
                 return websocket
+            token = request.match_info.get("token")
+            if token is not None and self.pages.pop(token, None) is None:
+                await websocket.send_bytes(b"\r\nThis page is out of date: reload it.\r\n")
+                await websocket.close()
+                return websocket
+            folder = Path(tempfile.mkdtemp(prefix="visitor-", dir=scratch))
             width = server.to_int(request.query.get("width", "80"), 80)
             height = server.to_int(request.query.get("height", "24"), 24)
-            visit = Visit(self.command, write_bytes=websocket.send_bytes,
-                          write_str=websocket.send_str, close=websocket.close,
-                          download_manager=self.download_manager, debug=self.debug)
+            if token is not None:
+                self.folders[token] = folder
+            visit = Visit(visit_command(config, scratch, limits, folder),
+                          write_bytes=websocket.send_bytes, write_str=websocket.send_str,
+                          close=websocket.close, download_manager=self.download_manager,
+                          debug=self.debug)
             self.visits.add(visit)  # its place taken before anything is awaited
             try:
                 await visit.start(width, height)
@@ -265,12 +347,14 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
             except Exception as error:  # one visitor's fault must not stop the server
                 server.log.exception(error)
             finally:
+                self.folders.pop(token, None)
                 await visit.stop()
                 self.visits.discard(visit)
+                shutil.rmtree(folder, ignore_errors=True)  # a killed process left it
             return websocket
 
     return ClassServer(visit_command(config, scratch, limits), host=host, port=port,
-                       title=f"biceps: {config.stem}")
+                       title=f"biceps: {config.stem}", templates_path=PAGE)
 
 
 def serve(config: Path, host: str, port: int, max_visitors: int, limits: Limits) -> None:

@@ -733,8 +733,7 @@ class BicepsApp(AppHooks):
         field = self._config_file_field(shown, ModelSuggester())
         answer = await self.push_screen_wait(
             Prompt("Open a configuration", [field], accept="Open", check=read,
-                   note="A file, or a bundled model by its name: "
-                        f"{', '.join(bundled_names())}."))
+                   note=_open_note()))
         if answer is None:
             return
         (config,) = opened
@@ -877,6 +876,17 @@ class BicepsApp(AppHooks):
                     "replaces those changes with this model.")
         choice = Choice("Changed on disk", question, answers)
         return await self.push_screen_wait(choice) == "overwrite"
+
+
+def _open_note() -> str:
+    """What the open dialog may open: under ``biceps serve``, the bundled models and the
+    visitor's own files (uploaded or saved), and nothing else."""
+    bundled = ", ".join(bundled_names())
+    if visitor.folder() is None:
+        return f"A file, or a bundled model by its name: {bundled}."
+    own = ", ".join(printable(name) for name in visitor.models()) or "none yet"
+    return (f"A bundled model by its name: {bundled}; or one of your files: {own}. Upload "
+            "your own with the bar above.")
 
 
 def _bundled(path: Path) -> bool:

@@ -30,6 +30,9 @@ class Picture:
     # Escape sequences drawing the frame as an image from the cursor, written once the lines
     # are out, with the cursor on the picture's top-left cell; "" for lines alone.
     image: str = ""
+    # The frame at two pixels a cell ((2 rows, columns, 3) uint8), for half-block lines to
+    # show while the image is hidden under another screen; None where the lines show it.
+    behind: np.ndarray | None = None
 
 
 class PictureEncoder(Protocol):

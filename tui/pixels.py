@@ -4,7 +4,8 @@ sending the whole frame as one image (the protocols themselves are ``terminal/ki
 
 The image is drawn from the picture's top-left cell over ``columns x rows`` cells. The
 lines under it are blank and are written only when the picture's size changes, so a new
-frame costs the image alone. All three paint over the cells: the viewport writes the image
+frame costs the image alone; while another screen is over the picture, the viewport shows
+the frame in half-blocks instead (``Picture.behind``), which that screen's backdrop dims. All three paint over the cells: the viewport writes the image
 only while nothing is drawn over the picture, and again when Textual has repainted the
 cells under it. Inside tmux, kitty's images are placed by Unicode placeholders instead
 (:class:`KittyPlaceholders`), which are the lines; kitty's own placements are used
@@ -64,7 +65,8 @@ class ImageEncoder:
             self._shape = (rows, columns), background
             self._strips = self.lines(columns, rows)
             changed = [(0, rows)]
-        return Picture(self._strips, changed, self.image(frame, columns, rows))
+        return Picture(self._strips, changed, self.image(frame, columns, rows),
+                       self.behind(frame, columns, rows))
 
     def reset(self) -> None:
         self._shape = None
@@ -72,6 +74,16 @@ class ImageEncoder:
     def lines(self, columns: int, rows: int) -> list[Strip]:
         """The lines under the image: blank, on the background."""
         return [Strip.blank(columns, self.background)] * rows
+
+    def behind(self, frame: np.ndarray, columns: int, rows: int) -> np.ndarray | None:
+        """``frame`` at two pixels a cell, one above the other: each the mean of four of
+        the half-cell's pixels, a quarter of the way in from each side, which is enough for
+        a picture dimmed behind another screen and costs little on every frame."""
+        height, width = frame.shape[:2]
+        ys = [(np.arange(2 * rows) * 4 + quarter) * height // (8 * rows) for quarter in (1, 3)]
+        xs = [(np.arange(columns) * 4 + quarter) * width // (4 * columns) for quarter in (1, 3)]
+        total = sum(frame[y[:, None], x].astype(np.uint16) for y in ys for x in xs)
+        return ((total + 2) // 4).astype(np.uint8)
 
     def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
         """Escape sequences drawing ``frame`` from the cursor over ``columns x rows`` cells

@@ -82,7 +82,7 @@ class Failed:
 class _Drawn:
     request: Request
     frame: np.ndarray | Exception  # (h, w, 3) uint8, or what stopped it being drawn
-    at: float  # monotonic seconds
+    at: float  # seconds, on the frames' clock
 
 
 class Frames(Generic[P]):
@@ -95,7 +95,8 @@ class Frames(Generic[P]):
                  clock: Callable[[], float] = monotonic) -> None:
         """``encoder`` turns frames into pictures, on the render thread only; ``pacer`` says
         when the next may be handed over; ``palette``: the colours a frame is mapped onto
-        as a whole (a 256-colour terminal), or None for 24-bit colour."""
+        as a whole (a 256-colour terminal), or None for 24-bit colour; ``clock``: seconds,
+        read on both threads, for when a frame is late (:meth:`busy`) or stale."""
         self._encoder, self._pacer, self._palette, self._clock = encoder, pacer, palette, clock
         self._requests: LatestOnly[Request] = LatestOnly()
         self.requested = 0  # the number of the newest request
@@ -151,7 +152,7 @@ class Frames(Generic[P]):
             drawn = self._drawn(renderer, request)
             if not requests.hand_over():
                 return
-            if (monotonic() - drawn.at > STALE_AFTER
+            if (self._clock() - drawn.at > STALE_AFTER
                     and (newer := requests.newer()) is not None):
                 drawn = self._drawn(renderer, newer)
             deliver(self._encoded(drawn))
@@ -166,8 +167,8 @@ class Frames(Generic[P]):
             if self._palette is not None:
                 frame = self._palette.mapped(frame, rgb(request.scene.render.background))
         except Exception as error:
-            return _Drawn(request, error, monotonic())
-        return _Drawn(request, frame, monotonic())
+            return _Drawn(request, error, self._clock())
+        return _Drawn(request, frame, self._clock())
 
     def _encoded(self, drawn: _Drawn) -> Rendered[P] | Failed:
         request, frame = drawn.request, drawn.frame

@@ -36,6 +36,11 @@ from textual.widget import Widget
 
 from biceps.tui.prerendered import console_system
 
+try:  # imported once: they are looked at on every frame Textual writes
+    from textual._compositor import ChopsUpdate, CompositorUpdate, LayoutUpdate
+except ImportError:  # a Textual without them takes the public path (see _missing)
+    ChopsUpdate = CompositorUpdate = LayoutUpdate = None  # type: ignore[assignment,misc]
+
 SWITCH = "BICEPS_TEXTUAL_PRIVATE"
 OLDEST, BEYOND = (8, 2, 7), (9,)  # the Textual versions whose internals are known
 
@@ -196,9 +201,8 @@ def restyle(widget: Widget, region: Region) -> bool:
 
 
 def update_touches(update: object, area: Region) -> bool:
-    """Whether ``update``, which Textual has written, wrote over any of ``area``."""
-    from textual._compositor import ChopsUpdate, LayoutUpdate
-
+    """Whether ``update``, which Textual has written, wrote over any of ``area`` (the
+    private path only: the public one is told of no update)."""
     if isinstance(update, LayoutUpdate):
         return update.region.overlaps(area)
     if isinstance(update, ChopsUpdate):
@@ -221,11 +225,8 @@ class AppHooks(App):
 
     def _display(self, screen: Any, renderable: Any) -> None:
         super()._display(screen, renderable)
-        if ENABLED and renderable is not None:
-            from textual._compositor import CompositorUpdate
-
-            if isinstance(renderable, CompositorUpdate):
-                self.screen_written(screen, renderable)
+        if ENABLED and isinstance(renderable, CompositorUpdate):
+            self.screen_written(screen, renderable)
 
     def _handle_exception(self, error: Exception) -> None:
         if ENABLED:

@@ -1,7 +1,8 @@
 """A visitor's files under ``biceps serve``: its own scratch folder, and nothing else.
 
 A visitor's process works in a folder of its own, where what it exports, saves or records is
-written before the browser downloads it. Every file name it types is taken inside that
+written before the browser downloads it, and where the server puts the models it uploads
+(``biceps/uploads.py``). Every file name it types is taken inside that
 folder: an absolute name, ``~``, ``..`` or a symbolic link leading out of it is refused; a
 bundled model is still opened by its name. Set once, at the visitor's entry point (``biceps
 visit``), for the whole process, which serves one visitor only.
@@ -43,3 +44,17 @@ def confined(path: Path) -> Path:
     if not (_folder / path).resolve().is_relative_to(_folder):
         raise ValueError(f"{printable(text)} is a link that leads out of your own folder")
     return path
+
+
+def models_in(folder: Path) -> list[str]:
+    """The names of the models (``*.toml`` files, not hidden, not links) in ``folder``,
+    sorted."""
+    return sorted(entry.name for entry in folder.iterdir()
+                  if entry.suffix.lower() == ".toml" and not entry.name.startswith(".")
+                  and entry.is_file() and not entry.is_symlink())
+
+
+def models() -> list[str]:
+    """The models in the visitor's folder, uploaded or saved there; none outside
+    ``biceps serve``."""
+    return [] if _folder is None else models_in(_folder)

@@ -19,11 +19,12 @@ from vt import Screen
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _first_picture(config: Path, *options: str, **variables: str) -> bytes:
-    """What ``biceps app`` writes to a 100x30 terminal until its first picture is out;
-    ``variables`` are added to its environment."""
+def _first_picture(config: Path, *options: str, timeout: float = 120.0,
+                   **variables: str) -> bytes:
+    """What ``biceps app`` writes to a 100x30 terminal until its first picture is out, within
+    ``timeout`` seconds; ``variables`` are added to its environment."""
     command = [sys.executable, "-m", "biceps", "app", str(config), *options]
-    return first_picture(command, cwd=ROOT, **variables).output
+    return first_picture(command, cwd=ROOT, timeout=timeout, **variables).output
 
 
 def _colour_codes(output: bytes) -> list[str]:
@@ -58,8 +59,11 @@ def test_a_truecolor_terminal_gets_the_picture_in_rgb(config_path):
 def test_the_picture_on_the_terminal_is_the_frame_exactly(config_path, tmp_path, cache):
     # Cold: an empty numba cache, as on a first run, where a child process compiles the
     # kernels for the first frame (engine/coldstart.py).
+    # Compiling every kernel can take minutes on a loaded machine: the limit is then
+    # test_first_run's.
     variables = {"NUMBA_CACHE_DIR": str(tmp_path / "cache")} if cache == "cold" else {}
-    output = _first_picture(config_path, "--colors", "truecolor", **variables).decode()
+    output = _first_picture(config_path, "--colors", "truecolor",
+                            timeout=300.0 if cache == "cold" else 120.0, **variables).decode()
     screen = Screen(100, 30).feed(output)
     # The picture is inside the first rounded box from the top left.
     right = screen.text(0).index("╮")

@@ -29,6 +29,7 @@ class Numbered(ImageEncoder):
 
     def image(self, frame: np.ndarray, columns: int, rows: int) -> str:
         self.frames += 1
+        self.last = frame.copy()
         return f"<image {self.frames}>"
 
     def clear(self) -> str:
@@ -66,6 +67,43 @@ async def test_an_image_is_never_painted_over_another_screen(config: Config):
         assert _images(written) == []
         await pilot.press("escape")
         await until(pilot, lambda: f"<image {shown + 1}>" in _images(written))
+
+
+def _half_cells(strip) -> list[tuple[tuple[int, int, int], tuple[int, int, int]]]:
+    """A line of half-blocks as the colours of its cells' upper and lower halves."""
+    cells = []
+    for segment in strip:
+        style = segment.style
+        for character in segment.text:
+            lower = style.bgcolor.get_truecolor()
+            upper = style.color.get_truecolor() if character == "\u2580" else lower
+            assert character in " \u2580"
+            cells.append((tuple(upper), tuple(lower)))
+    return cells
+
+
+async def test_behind_another_screen_the_picture_shows_in_half_blocks(config: Config):
+    encoder = Numbered()
+    app = BicepsApp(config, encoder=encoder)
+    async with app.run_test(size=(100, 30)) as pilot:
+        viewport, written = await _a_frame_written(app, pilot)
+        frame, (columns, rows) = encoder.last, viewport.size
+        blank = viewport.render_line(rows // 2)
+        assert blank.text.strip() == ""
+        await pilot.press("question_mark")
+        await until(pilot, lambda: "<clear>" in _images(written))
+        # Each half-cell's colour is one its pixels (4 x 8 a cell) make: within their range.
+        lines = [_half_cells(viewport.render_line(y)) for y in range(rows)]
+        assert all(len(line) == columns for line in lines)
+        for y, line in enumerate(lines):
+            for x, halves in enumerate(line):
+                for half, colour in enumerate(halves):
+                    pixels = frame[8 * y + 4 * half:8 * y + 4 * half + 4, 4 * x:4 * x + 4]
+                    assert (pixels.min(axis=(0, 1)) <= colour).all(), (x, y, half)
+                    assert (colour <= pixels.max(axis=(0, 1))).all(), (x, y, half)
+        assert len({cell for line in lines for cell in line}) > 10  # the arm, not a blank
+        await pilot.press("escape")
+        await until(pilot, lambda: viewport.render_line(rows // 2).text.strip() == "")
 
 
 async def test_a_resize_takes_the_old_image_off_before_the_new_one(config: Config):

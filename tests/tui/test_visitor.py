@@ -70,6 +70,34 @@ async def test_the_visitor_opens_its_uploads_and_the_bundled_models(biceps, own_
             assert session.app.scene.arm.muscle.node_count == nodes
 
 
+async def test_the_open_dialog_lists_the_bundled_models_and_the_visitors_own(biceps,
+                                                                             own_folder):
+    (own_folder / "second.toml").write_text("# an upload\n")
+    (own_folder / "picture.png").write_bytes(b"")
+    async with biceps() as session:
+        await session.pilot.press("ctrl+o")
+        await until(session.pilot, lambda: isinstance(session.app.screen, Prompt))
+        (note,) = session.app.screen.query(".dialog-note")
+        shown = str(note.render())
+    # Not the link leading out of the folder, nor the picture: only models that are there.
+    assert ("A bundled model by its name: biceps, elbow, fine, toy; or one of your files: "
+            "mine.toml, second.toml. Upload your own with the bar above.") in " ".join(
+        shown.split())
+
+
+async def test_a_bad_upload_is_refused_with_the_file_and_field_and_changes_nothing(
+        biceps, own_folder):
+    (own_folder / "bad.toml").write_text('[muscle]\nlength = "long"\n'
+                                         "nodes = [[1.0, 0.5], [2.0, 1.0]]\n")
+    async with biceps() as session:
+        before = session.app.scene
+        await _open(session, "bad.toml")
+        assert isinstance(session.app.screen, Prompt)
+        assert ("bad.toml:2: muscle.length: must be a finite number above 0 cm (found 'long')"
+                in session.app.screen.error)
+        assert session.app.scene is before
+
+
 async def test_names_are_suggested_only_from_the_visitors_folder(own_folder):
     suggester = PathSuggester((".toml",))
     assert await suggester.get_suggestion("mi") == "mine.toml"

@@ -13,7 +13,7 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
 from textual.content import Content
-from textual.events import Resize, ScreenSuspend
+from textual.events import Resize, ScreenResume, ScreenSuspend
 from textual.widget import Widget
 from textual.widgets import Static
 
@@ -112,6 +112,9 @@ class MainScreen(LatestSize[None]):
 
     def on_screen_suspend(self, event: ScreenSuspend) -> None:
         self.query_one(Viewport).hide_image()
+
+    def on_screen_resume(self, event: ScreenResume) -> None:
+        self.query_one(Viewport).show_image()
 
     def on_resize(self, event: Resize) -> None:
         width, height = event.size

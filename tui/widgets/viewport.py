@@ -23,7 +23,8 @@ An encoder of real pixels (``tui/pixels.py``) paints its image over the picture'
 the image is written only while the viewport's screen is the one shown (a dialog or the
 help screen would be painted over), taken off when another screen comes up or the size
 changes, and written again when Textual has repainted cells under it
-(:meth:`Viewport.repainted`).
+(:meth:`Viewport.repainted`). Under another screen the picture's cells show the frame in
+half-blocks, so that a dialog opens over the arm rather than over a blank.
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from __future__ import annotations
 from time import monotonic
 from typing import Sequence
 
+import numpy as np
 from rich.color import Color
 from rich.console import Console
 from rich.segment import Segment
@@ -108,15 +110,9 @@ class Viewport(Widget, can_focus=True):
         terminal (default: :class:`HalfBlocks`), from the render thread."""
         super().__init__(id=id)
         encoder = HalfBlocks() if encoder is None else encoder
-        # Text in a 256-colour terminal: every frame mapped onto its palette as a whole
-        # (terminal/palette.py), where Textual would map each colour on its own. The lines
-        # carry their text for this terminal's colours.
         palette: Palette256 | None = None
-        system = console_system(self.app.console)
-        if isinstance(encoder, TextCells) and system == "256":
-            palette, encoder = Palette256(), encoder.recoloured(palette_colour, system)
-        elif isinstance(encoder, TextCells) and system != "truecolor":
-            encoder = encoder.recoloured(color_system=system)
+        if isinstance(encoder, TextCells):
+            palette, encoder = self._for_this_terminal(encoder)
         self._palette, self._encoder = palette, encoder
         self._frames: Frames[Picture] = Frames(encoder, pacer, palette)
         self._scene: Scene | None = None
@@ -129,6 +125,10 @@ class Viewport(Widget, can_focus=True):
         # The newest frame's image and its size in cells, to write again after a repaint.
         self._latest_image, self._latest_size = "", Size(0, 0)
         self._image_on_screen = False  # whether an image was written and not cleared since
+        # The newest frame's lines, and the frame at two pixels a cell if the image shows it
+        # (Picture.behind), for half-blocks while it is hidden.
+        self._picture_lines: list[Strip] = self._strips
+        self._behind: np.ndarray | None = None
         self._background = Style()
         self._captions = ("", "")  # on the border now
         self._frame_captions = ("", "")  # those of the frame on screen
@@ -137,6 +137,19 @@ class Viewport(Widget, can_focus=True):
         self._captioning: tuple[Region, bool] | None = None
         self._progress_timer: Timer | None = None
         self._preparing_timer: Timer | None = None
+
+    def _for_this_terminal(self, encoder: TextCells) -> tuple[Palette256 | None, TextCells]:
+        """``encoder`` writing this terminal's colours, and the palette its frames are to be
+        mapped onto first, if any."""
+        # Text in a 256-colour terminal: every frame mapped onto its palette as a whole
+        # (terminal/palette.py), where Textual would map each colour on its own. The lines
+        # carry their text for this terminal's colours.
+        system = console_system(self.app.console)
+        if system == "256":
+            return Palette256(), encoder.recoloured(palette_colour, system)
+        if system != "truecolor":
+            return None, encoder.recoloured(color_system=system)
+        return None, encoder
 
     @property
     def up_to_date(self) -> bool:
@@ -175,10 +188,30 @@ class Viewport(Widget, can_focus=True):
         self._request_frame()
 
     def hide_image(self) -> None:
-        """Take the image off the screen (another screen is coming up over it)."""
+        """Take the image off the screen (another screen is coming up over it); its cells
+        show the picture in half-blocks meanwhile, as that screen's backdrop."""
         if self._image_on_screen:
             self._image_on_screen = False
             self._write(self._encoder.clear())
+        self._show_lines()
+
+    def show_image(self) -> None:
+        """The image's own lines again (the screen over it has gone): once Textual has
+        written them, the image goes over them (:meth:`repainted`)."""
+        self._show_lines()
+
+    def _show_lines(self) -> None:
+        """The newest frame's lines, or half-blocks of it where its image is hidden."""
+        strips = self._picture_lines
+        if self._behind is not None and not self._on_top and self._scene is not None:
+            palette, encoder = self._for_this_terminal(HalfBlocks())
+            behind = self._behind
+            if palette is not None:
+                behind = palette.mapped(behind, rgb(self._scene.render.background))
+            strips = encoder.encode(behind).strips
+        if strips is not self._strips:
+            self._strips = strips
+            self.refresh()
 
     def repainted(self, update: object) -> None:
         """Textual has written ``update`` to the terminal: if it wrote over the picture's
@@ -223,7 +256,11 @@ class Viewport(Widget, can_focus=True):
         frame = message.frame
         picture = frame.picture
         self._frames.arrived(frame)
-        self._strips = picture.strips
+        self._picture_lines, self._behind = picture.strips, picture.behind
+        if picture.behind is not None and not self._on_top:
+            self._show_lines()  # made while another screen is over the picture
+        else:
+            self._strips = picture.strips
         self._image = picture.image
         self._latest_image = picture.image
         self._latest_size = Size(picture.strips[0].cell_length if picture.strips else 0,
