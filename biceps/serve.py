@@ -347,9 +347,10 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
             except Exception as error:  # one visitor's fault must not stop the server
                 server.log.exception(error)
             finally:
+                # Its place is free as the tab closes, not once its app has ended.
+                self.visits.discard(visit)
                 self.folders.pop(token, None)
                 await visit.stop()
-                self.visits.discard(visit)
                 shutil.rmtree(folder, ignore_errors=True)  # a killed process left it
             return websocket
 
