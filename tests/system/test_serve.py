@@ -24,6 +24,7 @@ pytest.importorskip("aiohttp", reason="comes with textual-serve, the serve extra
 import aiohttp  # noqa: E402
 
 HALF_BLOCKS = ("\u2580".encode(), "\u2584".encode())  # upper and lower
+CONTROL_SEQUENCE = re.compile(rb"\x1b\[[0-9;?]*[A-Za-z]")  # colours, cursor moves
 CURSOR_AT = re.compile(rb"\x1b\[\d+;(\d+)H")
 
 
@@ -224,10 +225,11 @@ def _tree(root: int) -> set[int]:
 
 
 async def _read_until(websocket, wanted: bytes, timeout: float = 120) -> bytes:
-    """The visitor's terminal's output until ``wanted`` comes in it."""
+    """The visitor's terminal's output until ``wanted`` comes in its text: a line of text may
+    come in pieces, written where they go (a note over the picture's edge, say)."""
     seen = b""
     deadline = time.monotonic() + timeout
-    while wanted not in seen:
+    while wanted not in CONTROL_SEQUENCE.sub(b"", seen):
         message = await asyncio.wait_for(websocket.receive(), deadline - time.monotonic())
         if message.type in (aiohttp.WSMsgType.CLOSE, aiohttp.WSMsgType.CLOSED):
             raise AssertionError(f"closed before {wanted!r} came: {seen[-400:]!r}")
