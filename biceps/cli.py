@@ -38,8 +38,10 @@ from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Colors, Graphics, dr
 
 if TYPE_CHECKING:
     from biceps.engine.arm import Arm
+    from biceps.engine.coldstart import Asides
     from biceps.engine.movie import Progress
     from biceps.engine.scene import Scene
+    from biceps.tui.app import AppProcess
 
 
 class _FiniteFloat(click.ParamType):
@@ -321,21 +323,21 @@ def main() -> None:
 def app(config: Path, colors: str, fps: float | None, graphics: str | None,
         pixel_scale: float) -> None:
     """Open the terminal app on CONFIG (default: configs/biceps.toml)."""
+    from biceps.engine.coldstart import Asides
     from biceps.engine.config import load_config
 
-    compile_aside = _own_process()
-    if compile_aside:
+    asides = Asides() if _own_process() else None
+    if asides is not None:
         _keys_are_keys()
     loaded = load_config(config)  # fail here, before the terminal switches screens
     _check_terminal()
-    if compile_aside:  # the longest compilation of a first run starts before Textual loads
-        from biceps.engine.coldstart import compile_rasterizer_aside
-
-        compile_rasterizer_aside(loaded.render.shading)
+    if asides is not None:  # the longest compilation of a first run starts before Textual loads
+        asides.start_rasterizer(loaded.render.shading)
     from biceps.tui.app import run_app
 
-    status = run_app(loaded, colors=colors, fps=fps, compile_aside=compile_aside,
-                     graphics=graphics, pixel_scale=pixel_scale)
+    with _app_process(asides) as process:
+        status = run_app(loaded, colors=colors, fps=fps, graphics=graphics,
+                         pixel_scale=pixel_scale, process=process)
     if status:
         sys.exit(status)
 
@@ -434,7 +436,8 @@ def visit(config: Path, scratch: Path, folder: Path | None, memory: int | None) 
         visitor.confine_to(own)
         # The browser's terminal (xterm.js) shows 24-bit colour and text, never images:
         # nothing is asked of it.
-        status = run_app(loaded, colors="truecolor", graphics="halfblocks")
+        with _app_process() as process:
+            status = run_app(loaded, colors="truecolor", graphics="halfblocks", process=process)
     finally:
         os.chdir(scratch)
         shutil.rmtree(own, ignore_errors=True)
@@ -927,6 +930,32 @@ heap."""
 
 def _own_process() -> bool:
     return click.get_current_context().find_root().obj == OWN_PROCESS
+
+
+@contextmanager
+def _app_process(asides: Asides | None = None) -> Iterator[AppProcess]:
+    """What the app is given in the command's own process (tui/app.py's AppProcess): the
+    children ``asides`` compiling its first frame's kernels, one pool of threads for its
+    renderers, shut down after, and the heap frozen once it is up (`_freeze_heap`); in a
+    caller's process (a test's), nothing."""
+    from biceps.tui.app import AppProcess
+
+    if not _own_process():
+        yield AppProcess()
+        return
+    from biceps.engine.raster.bands import band_pool
+
+    with band_pool() as pool:
+        yield AppProcess(asides, pool, _freeze_heap)
+
+
+def _freeze_heap() -> None:
+    """Every frame of the app makes thousands of short-lived segments, and every so often
+    Python then collects the oldest generation too, walking all of Textual's and numba's
+    objects, long enough to miss frames. Set apart what exists once the app is up
+    (gc.freeze), so that those collections walk only what came after."""
+    gc.collect()
+    gc.freeze()
 
 
 def run() -> None:

@@ -6,19 +6,22 @@ other: numba compiles in Python under the GIL, so a thread cannot take half of t
 but a forked child process can. It compiles into the cache, and this process then loads
 from there what the child compiled.
 
-Everything about it is here; the rest of the program makes a few calls:
+Everything about it is here, and only the commands start it (a process that is theirs
+alone, ``biceps/cli.py``): the engine used as a library forks nothing. They make a few
+calls:
 
-- ``biceps snapshot`` calls :func:`prepare_kernels`: the child compiles the rasterizer
-  while this process compiles the vertex stage. With a warm cache the child would only
-  load what the first frame loads anyway, so once the vertex stage has come from the
-  cache the child is stopped rather than waited for (:func:`stop_aside_if_cached`).
-- The app's command starts the rasterizer's child as soon as it has read its config
-  (:func:`compile_rasterizer_aside`); the app then probes the cache and, if it is cold,
-  gives the rest of a frame's kernels to another child and what it can do without until
-  after the first picture to :func:`compile_later` (``tui/ahead.py``). Every
-  :class:`~biceps.engine.scene_renderer.SceneRenderer` calls :func:`wait_for_aside` before its
-  first frame, so the render thread loads what the children compiled instead of compiling
-  it again beside them.
+- ``biceps snapshot`` and ``animate`` call :func:`prepare_kernels`: the child compiles the
+  rasterizer while this process compiles the vertex stage. With a warm cache the child
+  would only load what the first frame loads anyway, so once the vertex stage has come
+  from the cache the child is stopped rather than waited for
+  (:meth:`Asides.stop_if_cached`).
+- The app's command makes an :class:`Asides` and starts the rasterizer's child as soon as
+  it has read its config (:meth:`Asides.start_rasterizer`); the app then probes the cache
+  and, if it is cold, gives the rest of a frame's kernels to another child and what it
+  can do without until after the first picture to :func:`compile_later`
+  (``tui/ahead.py``). The app's renderers are given :meth:`Asides.wait` to call before
+  their first frame (:class:`~biceps.engine.scene_renderer.SceneRenderer`), so the render
+  thread loads what the children compiled instead of compiling it again beside them.
 """
 
 from __future__ import annotations
@@ -73,80 +76,94 @@ class Aside:
             return not self._running
 
 
-_asides: list[Aside] = []
-"""The children started by :func:`compile_aside`, until someone has waited for them."""
-_asides_lock = threading.Lock()
-
 LATER = 19
 """The niceness of :func:`compile_later`'s children: the least share of a core Linux gives."""
 
 
-def compile_aside(job: Callable[[], None], what: str = "") -> Aside | None:
-    """Run ``job`` (a function that compiles, or loads, kernels) in a forked child, where
-    that helps and is safe: where processes fork, with two cores or more, and with no
-    other thread running (a fork copies only the calling thread, and a lock held by
-    another would stay held in the child for ever). Elsewhere: None, and this process
-    compiles what it needs as it goes.
+class Asides:
+    """The children compiling the kernels of this process's first frame, which its
+    renderers wait for (:meth:`wait`). Thread-safe."""
 
-    It freezes the heap (``gc.freeze``) before forking, as Python's documentation advises,
-    so that the collector does not write to every object and copy every page the
-    processes share: what exists by then is never collected, so call it early in a
-    process, or in one that ends soon after.
+    def __init__(self) -> None:
+        self._children: list[Aside] = []
+        self._lock = threading.Lock()
 
-    The child is kept for :func:`wait_for_aside`, which every renderer calls before its
-    first frame. Call it once for each of the jobs that take long; ``what``: what the job
-    compiles, in words, for a person waiting.
-    """
-    aside = _fork(job, 0, what)
-    if aside is not None:
-        with _asides_lock:
-            _asides.append(aside)
-    return aside
+    def start(self, job: Callable[[], None], what: str = "") -> Aside | None:
+        """Run ``job`` (a function that compiles, or loads, kernels) in a forked child,
+        where that helps and is safe: where processes fork, with two cores or more, and
+        with no other thread running (a fork copies only the calling thread, and a lock
+        held by another would stay held in the child for ever). Elsewhere: None, and this
+        process compiles what it needs as it goes.
 
+        It freezes the heap (``gc.freeze``) before forking, as Python's documentation
+        advises, so that the collector does not write to every object and copy every page
+        the processes share: what exists by then is never collected, so call it early in a
+        process, or in one that ends soon after (a command's own).
 
-def asides() -> list[Aside]:
-    """The children of :func:`compile_aside` that the next renderer will wait for."""
-    with _asides_lock:
-        return _asides[:]
+        Call it once for each of the jobs that take long; ``what``: what the job compiles,
+        in words, for a person waiting.
+        """
+        aside = _fork(job, 0, what)
+        if aside is not None:
+            with self._lock:
+                self._children.append(aside)
+        return aside
+
+    def start_rasterizer(self, shading: str) -> Aside | None:
+        """Start a child compiling the rasterizer of ``shading`` (:meth:`start`): much the
+        longest compilation of a frame, so the first to start."""
+        from biceps.engine.render import Renderer
+
+        return self.start(lambda: Renderer().prepare(shading, vertex_stage=False),
+                          "the rasterizer")
+
+    @property
+    def children(self) -> list[Aside]:
+        """The children started, ended or not."""
+        with self._lock:
+            return self._children[:]
+
+    def stop_if_cached(self, probe: Callable[[], None]) -> bool:
+        """Run ``probe``, a small part of the children's work, here; if numba compiled
+        nothing for it, the cache is warm: stop the children (they would only load what
+        this process loads anyway, each spending the tenth of a second numba's first load
+        in a process takes) and return True."""
+        from numba.core import event  # numba, only once a picture is to be made
+
+        try:
+            with event.install_recorder("numba:compile") as compiled:
+                probe()
+        except BaseException:  # an interrupt, say: no use waiting for the children
+            self._stop()
+            raise
+        if compiled.buffer:
+            return False
+        self._stop()
+        return True
+
+    def wait(self) -> None:
+        """Return once the children, if any, have ended, so that what they compiled is
+        loaded from the cache rather than compiled again. Cheap once they have. A child
+        that never ends is stopped after :meth:`Aside.wait`'s time limit; one whose process
+        quits first finishes its compilation, and the next start is warm."""
+        for aside in self.children:
+            aside.wait()
+
+    def _stop(self) -> None:
+        for aside in self.children:
+            aside.stop()
 
 
 def compile_later(job: Callable[[], None]) -> Aside | None:
-    """Run ``job`` as :func:`compile_aside` does, but at the lowest priority (niceness
+    """Run ``job`` as :meth:`Asides.start` does, but at the lowest priority (niceness
     :data:`LATER`), for kernels wanted after the first picture: the child runs while
     the others leave a core idle, and barely slows them when they do not. Renderers do
     not wait for it; whoever wants its kernels waits for the child returned."""
     return _fork(job, LATER)
 
 
-def stop_aside_if_cached(probe: Callable[[], None]) -> bool:
-    """Run ``probe``, a small part of the children's work, here; if numba compiled nothing
-    for it, the cache is warm: stop the children of :func:`compile_aside` (they would only
-    load what this process loads anyway, each spending the tenth of a second numba's
-    first load in a process takes) and return True."""
-    from numba.core import event  # numba, only once a picture is to be made
-
-    try:
-        with event.install_recorder("numba:compile") as compiled:
-            probe()
-    except BaseException:  # an interrupt, say: no use waiting for the children
-        _stop_asides()
-        raise
-    if compiled.buffer:
-        return False
-    _stop_asides()
-    return True
-
-
-def _stop_asides() -> None:
-    with _asides_lock:
-        asides = _asides[:]
-        _asides.clear()
-    for aside in asides:
-        aside.stop()
-
-
 def _fork(job: Callable[[], None], niceness: int, what: str = "") -> Aside | None:
-    """`compile_aside`'s child, at ``niceness``; None where a fork would not help."""
+    """`Asides.start`'s child, at ``niceness``; None where a fork would not help."""
     if not hasattr(os, "fork") or _cores() < 2 or threading.active_count() > 1:
         return None
     gc.freeze()
@@ -159,28 +176,6 @@ def _fork(job: Callable[[], None], niceness: int, what: str = "") -> Aside | Non
         finally:
             os._exit(0)  # never back into the caller's code, its exit handlers or buffers
     return Aside(pid, what)
-
-
-def wait_for_aside() -> None:
-    """Return once the children started by :func:`compile_aside`, if any, have ended, so
-    that what they compiled is loaded from the cache rather than compiled again. Cheap
-    when there are none. A child that never ends is stopped after :meth:`Aside.wait`'s
-    time limit; one whose process quits first finishes its compilation, and the next start
-    is warm."""
-    with _asides_lock:
-        asides = _asides[:]
-        _asides.clear()
-    for aside in asides:
-        aside.wait()
-
-
-def compile_rasterizer_aside(shading: str) -> Aside | None:
-    """Start a child compiling the rasterizer of ``shading`` (:func:`compile_aside`): much
-    the longest compilation of a frame, so the first to start."""
-    from biceps.engine.render import Renderer
-
-    return compile_aside(lambda: Renderer().prepare(shading, vertex_stage=False),
-                         "the rasterizer")
 
 
 def prepare_outline() -> None:
@@ -221,12 +216,13 @@ def prepare_around_the_rasterizer(shading: str, ssaa: int = 1) -> None:
 
 def prepare_kernels(shading: str, ssaa: int = 1) -> None:
     """Compile, or load from the cache, the kernels of a frame in ``shading`` with ``ssaa``
-    supersampling, the rasterizer's in a child process (see :func:`compile_aside`) while
+    supersampling, the rasterizer's in a child process (see :meth:`Asides.start`) while
     this one does the rest: with a warm cache, once the rest has come from there, so,
     most likely, has the rasterizer, and the child is stopped."""
-    compile_rasterizer_aside(shading)
-    stop_aside_if_cached(lambda: prepare_around_the_rasterizer(shading, ssaa))
-    wait_for_aside()
+    asides = Asides()
+    asides.start_rasterizer(shading)
+    if not asides.stop_if_cached(lambda: prepare_around_the_rasterizer(shading, ssaa)):
+        asides.wait()
 
 
 def _cores() -> int:

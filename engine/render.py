@@ -6,10 +6,12 @@ A frame is one call of each kernel of ``engine/raster/``; Python here only compo
 
 from __future__ import annotations
 
+from concurrent.futures import Executor
+
 import numpy as np
 
 from biceps.engine import raster
-from biceps.engine.raster.bands import Bands, run_all
+from biceps.engine.raster.bands import Bands
 from biceps.engine.transforms import Camera, Light, normal_matrix
 
 RASTERIZERS = {
@@ -33,11 +35,13 @@ class Renderer:
 
     threads: how many threads draw each frame, in bands (``engine/raster/bands.py``; by
     default ``BICEPS_THREADS`` or every core); the picture is the same on any number.
+    pool: where the threads come from (shared, its owner's to shut down), or None for a
+    pool of the renderer's own, which :meth:`close` shuts down.
     """
 
-    def __init__(self, threads: int | None = None):
+    def __init__(self, threads: int | None = None, pool: Executor | None = None):
         self._frame: tuple | None = None  # (height, width, ssaa)
-        self._bands = Bands(threads)
+        self._bands = Bands(threads, pool)
         self._vertex_count = -1
         self._mesh: tuple | None = None  # (vertices, normals, triangles) last copied in
         # The last frame's camera and light and what they gave: frames of an unmoved camera
@@ -46,6 +50,10 @@ class Renderer:
         self._seen: tuple = (None, None)
         self._normals_of: tuple = (b"", None)  # the last model matrix's bytes, its normals'
         self._background: tuple | None = None  # the last frame's (see _draw)
+
+    def close(self) -> None:
+        """Stop the threads of the renderer's own pool, if it started one."""
+        self._bands.close()
 
     @property
     def threads(self) -> int:
@@ -172,8 +180,8 @@ class Renderer:
         count = self._vertex_count
         parts = self.threads if count >= PARALLEL_VERTICES else 1
         edges = [count * k // parts for k in range(parts + 1)]
-        run_all(lambda first=first, end=end: stage(first, end)
-                for first, end in zip(edges, edges[1:]))
+        self._bands.run(lambda first=first, end=end: stage(first, end)
+                        for first, end in zip(edges, edges[1:]))
         return attributes
 
     def _camera_and_light(self, camera: Camera, light: Light, aspect: float) -> tuple:

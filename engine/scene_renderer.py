@@ -5,9 +5,11 @@ model rebuild none of them.
 
 from __future__ import annotations
 
+from concurrent.futures import Executor
+from typing import Callable
+
 import numpy as np
 
-from biceps.engine import coldstart
 from biceps.engine.appearance import Spans, marked_albedo, scene_mesh
 from biceps.engine.config import rgb
 from biceps.engine.cost import check_picture
@@ -37,12 +39,20 @@ def supersampling(render: RenderSettings, height: int) -> int:
 class SceneRenderer:
     """Turns scenes into pictures, reusing its buffers and the last mesh between frames.
 
-    Not thread-safe: give each thread its own.
+    Not thread-safe: give each thread its own. Draws on a pool of threads of its own, which
+    :meth:`close` stops (or leaving a ``with`` block), unless given one to share.
     """
 
-    def __init__(self) -> None:
-        coldstart.wait_for_aside()  # load, rather than compile again, what a child compiles
-        self._renderer = Renderer()
+    def __init__(self, pool: Executor | None = None,
+                 wait_for_kernels: Callable[[], None] | None = None) -> None:
+        """``pool``: threads to share with other renderers (``raster/bands.py``'s
+        `band_pool`), shut down by whoever made it. ``wait_for_kernels``: called first,
+        returning once kernels being compiled elsewhere are in numba's cache (the children
+        an entry point started, ``engine/coldstart.py``), so that this renderer loads them
+        rather than compiling them again."""
+        if wait_for_kernels is not None:
+            wait_for_kernels()
+        self._renderer = Renderer(pool=pool)
         self._mesh_key: tuple | None = None
         self._mesh: tuple[Mesh, np.ndarray, Spans] | None = None
         self._outline: np.ndarray | None = None
@@ -70,6 +80,16 @@ class SceneRenderer:
             light, width, height, shading=scene.render.shading,
             ssaa=ssaa, background=rgb(scene.render.background), pixel_aspect=pixel_aspect,
         )  # fmt: skip
+
+    def close(self) -> None:
+        """Stop the threads of the renderer's own pool, if it started one."""
+        self._renderer.close()
+
+    def __enter__(self) -> SceneRenderer:
+        return self
+
+    def __exit__(self, *exc_info) -> None:
+        self.close()
 
     def outline(self, scene: Scene) -> np.ndarray:
         """The `outline` (k, 3) of ``scene``'s mesh, world space at rest."""

@@ -63,24 +63,24 @@ def preparing() -> Preparation | None:
     return _preparation
 
 
-def compile_ahead(config: Config, encoder: PictureEncoder, palette: bool = False) -> None:
-    """Once the rasterizer's child is on its way (see the module's docstring), probe the
-    cache with the outline's kernel; if it is cold, start the children compiling the rest
-    of the app's first frame of ``config`` through ``encoder`` (mapped onto the 256-colour
-    palette first, if ``palette``), and the minimizer, and say so (:func:`preparing`).
-    Call it before any other thread starts (see `coldstart.compile_aside`)."""
+def compile_ahead(asides: coldstart.Asides, config: Config, encoder: PictureEncoder,
+                  palette: bool = False) -> None:
+    """Once the rasterizer's child of ``asides`` is on its way (see the module's
+    docstring), probe the cache with the outline's kernel; if it is cold, start the children
+    compiling the rest of the app's first frame of ``config`` through ``encoder`` (mapped
+    onto the 256-colour palette first, if ``palette``), and the minimizer, and say so
+    (:func:`preparing`). Call it before any other thread starts (see `Asides.start`)."""
     global _preparation
     started = time.monotonic()
-    if coldstart.stop_aside_if_cached(coldstart.prepare_outline):
+    if asides.stop_if_cached(coldstart.prepare_outline):
         return  # this process loads the kernels as it goes, in milliseconds
     # A frame of one cell: so small that it is supersampled, as the app's first most
     # likely is (engine/scene_renderer.py).
     shading = config.render.shading
     ssaa = supersampling(config.render, encoder.cell.height)
-    coldstart.compile_aside(
-        lambda: _prepare_around_the_rasterizer(shading, ssaa, encoder, palette),
-        "the rest of a frame")
-    _preparation = Preparation(started, tuple(coldstart.asides()))
+    asides.start(lambda: _prepare_around_the_rasterizer(shading, ssaa, encoder, palette),
+                 "the rest of a frame")
+    _preparation = Preparation(started, tuple(asides.children))
     minimizer = coldstart.compile_later(_load_minimizer)
     if minimizer is not None:
         _minimizer_ready.clear()

@@ -8,11 +8,11 @@ model refuses leaves the scene as it was and says why in a notification.
 from __future__ import annotations
 
 import asyncio
-import gc
 import os
 import signal
 import sys
-from dataclasses import replace
+from concurrent.futures import Executor
+from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
 from time import monotonic
@@ -33,6 +33,7 @@ from textual.theme import ThemeProvider
 
 from biceps.configs import FOLDER as BUNDLED_MODELS, bundled_names, file_or_bundled
 from biceps.engine.arm import Arm
+from biceps.engine.coldstart import Asides
 from biceps.engine.config import Config, load_config, save_config
 from biceps.engine.cost import check_model, check_picture
 from biceps.engine.errors import BicepsError, FileChanged
@@ -193,12 +194,17 @@ class BicepsApp(AppHooks):
 
     def __init__(self, config: Config, fps: float | None = None,
                  encoder: PictureEncoder | None = None, notice: str | None = None,
-                 rescue: Rescue | None = None) -> None:
+                 rescue: Rescue | None = None,
+                 renderer: Callable[[], SceneRenderer] = SceneRenderer,
+                 when_up: Callable[[], object] | None = None) -> None:
         """``fps``: the most frames a second the picture is redrawn at, up to Textual's
         limit (``TEXTUAL_FPS``, 60 unless set), the cap if None; ``encoder``: how the
         picture reaches the terminal (default: half-blocks); ``notice``: said once the app
         is up (what the terminal could show, see terminal/choose.py). ``rescue``: start on the
-        model an app left when it ended on an error, and offer to save it."""
+        model an app left when it ended on an error, and offer to save it. ``renderer``:
+        makes the renderer of each thread that draws (the pictures, an export), each closed
+        once done. ``when_up``: called once the app is up (the command freezes the heap
+        there, ``biceps/cli.py``)."""
         super().__init__()
         # Textual paints no more often than its limit, but the viewport writes most frames
         # itself (tui/widgets/viewport.py): the pacer keeps them to the limit too.
@@ -207,6 +213,7 @@ class BicepsApp(AppHooks):
                            limit if fps is None else min(fps, limit))
         self._encoder = encoder
         self._notice = notice
+        self._renderer, self._when_up = renderer, when_up
         self._history = History()
         self._backlog = Backlog()
         self._backlog_report_due = False
@@ -241,7 +248,7 @@ class BicepsApp(AppHooks):
         return True
 
     def get_default_screen(self) -> Screen:
-        return MainScreen(self.pacer, self._encoder)
+        return MainScreen(self.pacer, self._encoder, self._renderer)
 
     def get_driver_class(self) -> type[Driver]:
         # Textual's own driver, reading stray bytes as U+FFFD (tui/terminal_input.py) and
@@ -330,12 +337,8 @@ class BicepsApp(AppHooks):
             # its rescue) stopped it, with nothing to start it again. ctrl+z is undo here;
             # the signal is ignored, as it is before the app starts (biceps/cli.py).
             signal.signal(signal.SIGTSTP, signal.SIG_IGN)
-        # Every frame makes thousands of short-lived segments, and every so often Python
-        # then collects the oldest generation too, walking all of Textual's and numba's
-        # objects, long enough to miss frames. Set apart what exists once the app is up
-        # (gc.freeze), so that those collections walk only what came after.
-        gc.collect()
-        gc.freeze()
+        if self._when_up is not None:
+            self._when_up()
         if self._notice:
             self.notify(self._notice, timeout=12, markup=False)
         if self._rescue is not None:
@@ -346,9 +349,6 @@ class BicepsApp(AppHooks):
         # frame (a dialog closing): the viewport is told what was written.
         if isinstance(screen, MainScreen):
             screen.query_one(Viewport).repainted(update)
-
-    def on_unmount(self) -> None:
-        gc.unfreeze()
 
     def _ask_cursor_position(self, column: int) -> bool:
         # Written straight to the driver, after the frame already queued there (as
@@ -770,7 +770,8 @@ class BicepsApp(AppHooks):
     @work(thread=True, group="export")
     def _write_picture(self, scene: Scene, path: Path, width: int, height: int) -> None:
         try:
-            write_png(path, SceneRenderer().render(scene, width, height))
+            with self._renderer() as renderer:
+                write_png(path, renderer.render(scene, width, height))
         except BicepsError as error:
             reason = str(error)
         except MemoryError:
@@ -894,24 +895,42 @@ def _bundled(path: Path) -> bool:
     return path.resolve().parent == BUNDLED_MODELS.resolve()
 
 
+@dataclass(frozen=True)
+class AppProcess:
+    """What the command sets up for an app in a process of its own (``biceps/cli.py``),
+    which the app would not do to a caller's (a test's): by default nothing."""
+
+    asides: Asides | None = None
+    """The children the command started compiling the first frame's kernels; given, the
+    app gives the rest of them to more (``tui/ahead.py``), and its renderers wait for
+    them all before their first frame."""
+    pool: Executor | None = None
+    """The threads the app's renderers draw on, shared; each its own if None."""
+    when_up: Callable[[], object] | None = None
+    """Called once the app is up."""
+
+    def renderer(self) -> SceneRenderer:
+        """A renderer on the shared pool, once the children are done."""
+        return SceneRenderer(self.pool, None if self.asides is None else self.asides.wait)
+
+
 def run_app(config: Config, colors: str = "auto", fps: float | None = None,
-            compile_aside: bool = False, graphics: str | None = None,
-            pixel_scale: float = 1.0) -> int:
+            graphics: str | None = None, pixel_scale: float = 1.0,
+            process: AppProcess = AppProcess()) -> int:
     """Run the app on ``config``; ``colors`` is ``auto`` (the config's, or what the terminal
-    answers), ``truecolor`` or ``256``; ``fps`` caps the frame rate. ``compile_aside``:
-    compile a frame's kernels in forked children while Textual starts (see tui/ahead.py),
-    for a process of its own. ``graphics``: the command line's choice of how the picture
-    reaches the terminal (default: the config's), real pixels ``pixel_scale`` of the
-    terminal's each way.
+    answers), ``truecolor`` or ``256``; ``fps`` caps the frame rate. ``graphics``: the
+    command line's choice of how the picture reaches the terminal (default: the config's),
+    real pixels ``pixel_scale`` of the terminal's each way. ``process``: what the command
+    set up for a process of its own (none by default).
 
     Returns the exit status: 0, or 1 if the app ended on an error, after offering to save
     the model it had (:func:`rescued`)."""
     with no_flow_control():
-        return _run(config, colors, fps, compile_aside, graphics, pixel_scale)
+        return _run(config, colors, fps, graphics, pixel_scale, process)
 
 
-def _run(config: Config, colors: str, fps: float | None, compile_aside: bool,
-         graphics: str | None, pixel_scale: float) -> int:
+def _run(config: Config, colors: str, fps: float | None, graphics: str | None,
+         pixel_scale: float, process: AppProcess) -> int:
     # Asked before Textual takes the terminal (its input thread would take the answers); not
     # at all when the command line says half-blocks and the colours, so nothing is written
     # but the app.
@@ -926,10 +945,12 @@ def _run(config: Config, colors: str, fps: float | None, compile_aside: bool,
                          f"{textual_private.describe()}")
     system = colours(colours_asked, answers, place).system
     encoder = encoder_for(choice, pixel_scale)
-    if compile_aside:
-        compile_ahead(config, encoder, palette=system == "256" and choice.graphics in TEXT)
+    if process.asides is not None:
+        compile_ahead(process.asides, config, encoder,
+                      palette=system == "256" and choice.graphics in TEXT)
     with colour_system(system):  # Textual's apps take it as they are made
-        app = BicepsApp(config, fps=fps, encoder=encoder, notice=notice(asked, choice))
+        app = BicepsApp(config, fps=fps, encoder=encoder, notice=notice(asked, choice),
+                        renderer=process.renderer, when_up=process.when_up)
         app.run()
         if app.failure is None and app.return_code == 1:  # the public path says no more
             app.failure = "an error in the app"
@@ -956,4 +977,5 @@ def rescued(app: BicepsApp, fps: float | None = None) -> BicepsApp | None:
     if not has_unsaved_edits(app.scene, app._saved):
         return None
     return BicepsApp(app.config, fps=fps,
-                     rescue=Rescue(app.config, app.scene, app._saved, app.failure or "?"))
+                     rescue=Rescue(app.config, app.scene, app._saved, app.failure or "?"),
+                     renderer=app._renderer, when_up=app._when_up)

@@ -92,12 +92,16 @@ class Frames(Generic[P]):
     """
 
     def __init__(self, encoder: Encoder[P], pacer: Pacer, palette: Palette256 | None = None,
-                 clock: Callable[[], float] = monotonic) -> None:
+                 clock: Callable[[], float] = monotonic,
+                 renderer: Callable[[], SceneRenderer] | None = None) -> None:
         """``encoder`` turns frames into pictures, on the render thread only; ``pacer`` says
         when the next may be handed over; ``palette``: the colours a frame is mapped onto
         as a whole (a 256-colour terminal), or None for 24-bit colour; ``clock``: seconds,
-        read on both threads, for when a frame is late (:meth:`busy`) or stale."""
+        read on both threads, for when a frame is late (:meth:`busy`) or stale;
+        ``renderer`` makes the render thread's renderer, closed when it is done (a
+        :class:`SceneRenderer` of its own if None)."""
         self._encoder, self._pacer, self._palette, self._clock = encoder, pacer, palette, clock
+        self._renderer = renderer
         self._requests: LatestOnly[Request] = LatestOnly()
         self.requested = 0  # the number of the newest request
         self.shown = 0  # the number of the request whose frame (or failure) came last
@@ -143,20 +147,24 @@ class Frames(Generic[P]):
         time, until :meth:`close`. Run on the render thread."""
         # Both keep what they need from one frame to the next (buffers, the lines on
         # screen), so they are this thread's own (see PictureEncoder for the exceptions).
-        renderer, requests = SceneRenderer(), self._requests
-        request = requests.take()
-        while request is not None:
-            # Drawn ahead, while the UI waits for the terminal to take the last frame: once
-            # it has, the next is only encoded (every encoded frame is shown, in order: the
-            # encoder sends the rows that changed since the last), not drawn too.
-            drawn = self._drawn(renderer, request)
-            if not requests.hand_over():
-                return
-            if (self._clock() - drawn.at > STALE_AFTER
-                    and (newer := requests.newer()) is not None):
-                drawn = self._drawn(renderer, newer)
-            deliver(self._encoded(drawn))
+        renderer, requests = (self._renderer or SceneRenderer)(), self._requests
+        try:
             request = requests.take()
+            while request is not None:
+                # Drawn ahead, while the UI waits for the terminal to take the last frame:
+                # once it has, the next is only encoded (every encoded frame is shown, in
+                # order: the encoder sends the rows that changed since the last), not drawn
+                # too.
+                drawn = self._drawn(renderer, request)
+                if not requests.hand_over():
+                    return
+                if (self._clock() - drawn.at > STALE_AFTER
+                        and (newer := requests.newer()) is not None):
+                    drawn = self._drawn(renderer, newer)
+                deliver(self._encoded(drawn))
+                request = requests.take()
+        finally:
+            renderer.close()
 
     def _drawn(self, renderer: SceneRenderer, request: Request) -> _Drawn:
         """The frame of ``request``, valid until ``renderer`` draws again, or the error

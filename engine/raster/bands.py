@@ -15,14 +15,15 @@ rendering while a picture is exported or a video recorded), and parallel kernels
 several times as long to compile, on the cold first run the app is to start within 3.5 s.
 
 How many threads: ``BICEPS_THREADS`` in the environment (``engine/settings.py``), or else
-every core this process may run on; 1 keeps everything on the calling thread.
+every core this process may run on; 1 keeps everything on the calling thread. Whose
+threads: a pool of the renderer's own, shut down with it, unless it is given one to share
+(the app's renderers share one, which its command starts and stops).
 """
 
 from __future__ import annotations
 
 import os
-import threading
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import Executor, ThreadPoolExecutor
 
 import numpy as np
 
@@ -41,10 +42,6 @@ HITS = 4096
 enough for most triangles' whole share of a band, few enough to stay in the L1 and L2
 caches."""
 
-_pool: ThreadPoolExecutor | None = None
-_pool_lock = threading.Lock()  # two renderers (the app's, an export's) may start it at once
-
-
 def default_threads() -> int:
     """The threads ``BICEPS_THREADS`` asks for (`settings.drawing_threads`, which refuses
     what is not a whole number from 1), else this process's cores."""
@@ -56,35 +53,53 @@ def default_threads() -> int:
     return max(os.cpu_count() or 1, 1)
 
 
-def run_all(tasks) -> None:
-    """Run every callable of ``tasks``, the first on this thread and the rest on the pool's,
-    and return once all have, raising the first error any raised."""
-    global _pool
-    tasks = list(tasks)
-    if len(tasks) > 1:
-        with _pool_lock:
-            if _pool is None:
-                # Its threads only ever run tasks to the end, never wait on another, so
-                # renderers sharing it cannot deadlock, whatever their number of bands.
-                _pool = ThreadPoolExecutor(max_workers=max(default_threads(), len(tasks)) - 1,
-                                           thread_name_prefix="biceps-band")
-    futures = [_pool.submit(task) for task in tasks[1:]]
-    try:
-        tasks[0]()
-    finally:
-        for future in futures:
-            future.result()
+def band_pool(threads: int | None = None) -> ThreadPoolExecutor:
+    """A pool for renderers of ``threads`` threads (`default_threads` if None) to share,
+    one thread fewer, as the calling thread draws a band too. Its threads only ever run
+    tasks to the end, never wait on another, so renderers sharing it cannot deadlock,
+    whatever their number of bands. Its owner shuts it down."""
+    threads = default_threads() if threads is None else threads
+    return ThreadPoolExecutor(max_workers=max(threads - 1, 1), thread_name_prefix="biceps-band")
 
 
 class Bands:
     """The split of frames into bands, and each band's scratch buffers."""
 
-    def __init__(self, threads: int | None = None):
+    def __init__(self, threads: int | None = None, pool: Executor | None = None):
+        """``threads``: the bands of a large frame (`default_threads` if None); ``pool``:
+        where the bands but the first are drawn (shared, see `band_pool`, and shut down by
+        its owner), or None for a pool of this object's own, started at the first frame
+        that needs it and shut down by :meth:`close`."""
         threads = default_threads() if threads is None else threads
         if not (isinstance(threads, (int, np.integer)) and threads >= 1):
             raise ValueError(f"threads must be a positive integer, got {threads!r}")
         self.threads = int(threads)
+        self._pool = pool
+        self._own_pool: ThreadPoolExecutor | None = None
         self._shape: tuple | None = None
+
+    def run(self, tasks) -> None:
+        """Run every callable of ``tasks``, the first on this thread and the rest on the
+        pool's, and return once all have, raising the first error any raised."""
+        tasks = list(tasks)
+        pool = self._pool
+        if pool is None and len(tasks) > 1:
+            if self._own_pool is None:
+                self._own_pool = band_pool(max(self.threads, len(tasks)))
+            pool = self._own_pool
+        futures = [pool.submit(task) for task in tasks[1:]]
+        try:
+            tasks[0]()
+        finally:
+            for future in futures:
+                future.result()
+
+    def close(self) -> None:
+        """Shut down the pool of this object's own, if it started one (a shared pool is
+        its owner's to shut down); a later frame starts another."""
+        if self._own_pool is not None:
+            self._own_pool.shutdown()
+            self._own_pool = None
 
     def reserve(self, height: int, width: int, ssaa: int) -> None:
         """Split a frame of ``height`` x ``width`` pixels drawn ``ssaa`` times finer into
@@ -117,5 +132,5 @@ class Bands:
         """Call ``draw_band(start, end, scratch)`` for every band at once: its rows
         ``start <= y < end`` of the fine frame, and its scratch (spans, planes, hits,
         shaded, columns; the spans' last two rows kept from frame to frame)."""
-        run_all(lambda rows=rows, scratch=scratch: draw_band(*rows, scratch)
-                for rows, scratch in zip(self.rows, self.scratch))
+        self.run(lambda rows=rows, scratch=scratch: draw_band(*rows, scratch)
+                 for rows, scratch in zip(self.rows, self.scratch))

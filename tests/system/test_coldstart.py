@@ -118,11 +118,11 @@ def compiled_by(step):
         step()
     return sorted({e.data["dispatcher"].py_func.__name__ for _, e in recorder.buffer})
 
-config, encoder = load_config(sys.argv[1]), HalfBlocks()
-coldstart.compile_rasterizer_aside(config.render.shading)
-ahead_ = compiled_by(lambda: ahead.compile_ahead(config, encoder))
+config, encoder, asides = load_config(sys.argv[1]), HalfBlocks(), coldstart.Asides()
+asides.start_rasterizer(config.render.shading)
+ahead_ = compiled_by(lambda: ahead.compile_ahead(asides, config, encoder))
 renderers = []
-waiting = compiled_by(lambda: renderers.append(SceneRenderer()))
+waiting = compiled_by(lambda: renderers.append(SceneRenderer(wait_for_kernels=asides.wait)))
 cell = encoder.cell
 frame = compiled_by(lambda: encoder.encode(
     renderers[0].render(Scene.of(config), 60 * cell.width, 28 * cell.height)))
@@ -160,10 +160,11 @@ import numba
 from biceps.engine import coldstart
 
 done = Path(sys.argv[2])
-coldstart.compile_aside(lambda: (time.sleep(2), done.write_text("done")))
+asides = coldstart.Asides()
+asides.start(lambda: (time.sleep(2), done.write_text("done")))
 probe = numba.njit(lambda: 1) if sys.argv[1] == "cold" else lambda: None
-warm = coldstart.stop_aside_if_cached(probe)
-coldstart.wait_for_aside()
+warm = asides.stop_if_cached(probe)
+asides.wait()
 print(warm, done.exists())
 """
 
@@ -217,7 +218,7 @@ def test_there_is_no_fork_beside_another_thread(monkeypatch):
 # another thread, must end it and leave no child behind.
 HANGING_CHILD = """
 import os, sys, threading, time
-from biceps.engine.coldstart import compile_aside
+from biceps.engine.coldstart import Asides
 
 def no_child_left():
     try:
@@ -226,7 +227,7 @@ def no_child_left():
         return True
     return False
 
-aside = compile_aside(lambda: time.sleep(600))
+aside = Asides().start(lambda: time.sleep(600))
 if sys.argv[1] == "timeout":
     aside.wait(timeout=0.2)
 else:

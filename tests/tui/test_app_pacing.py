@@ -14,7 +14,7 @@ import biceps.tui.pacing
 import biceps.tui.rendering
 from biceps.cli import main
 from biceps.engine.scene_renderer import SceneRenderer
-from biceps.tui.app import BicepsApp
+from biceps.tui.app import AppProcess, BicepsApp
 from biceps.tui.changes import TURN_STEP
 from biceps.tui.pacing import LoopTimer, Pacer, cursor_question
 from biceps.tui.widgets.viewport import Viewport
@@ -332,7 +332,7 @@ def test_the_command_line_passes_the_cap_to_the_app(monkeypatch):
     monkeypatch.setattr("biceps.cli._check_terminal", lambda: None)  # the runner has none
     result = CliRunner().invoke(main, ["app", "--fps", "30"])
     assert result.exit_code == 0, result.output
-    # Not the command's own process (a test's): nothing is forked.
-    assert runs == [{"colors": "auto", "fps": 30, "compile_aside": False, "graphics": None,
-                     "pixel_scale": 1.0}]
+    # Not the command's own process (a test's): nothing is forked, no pool or heap is set up.
+    assert runs == [{"colors": "auto", "fps": 30, "graphics": None, "pixel_scale": 1.0,
+                     "process": AppProcess()}]
     assert CliRunner().invoke(main, ["app", "--fps", "0"]).exit_code == 2

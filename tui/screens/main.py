@@ -7,7 +7,7 @@ room (as lazygit and btop fold their panels), and a key hides or shows it at any
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from typing import Any, Callable, Sequence
 
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -20,6 +20,7 @@ from textual.widgets import Static
 from biceps.engine.arm import Arm
 from biceps.engine.hold import Effort
 from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
 from biceps.tui.encoder import PictureEncoder
 from biceps.tui.pacing import Pacer
 from biceps.tui.fields import Check, Field
@@ -68,11 +69,14 @@ class MainScreen(LatestSize[None]):
     AUTO_FOCUS = "#viewport"
     BINDINGS = [Binding("h", "toggle_panel", "Hide or show the side panel", show=False)]
 
-    def __init__(self, pacer: Pacer, encoder: PictureEncoder | None = None) -> None:
-        """``encoder``: how the picture reaches the terminal (default: half-blocks)."""
+    def __init__(self, pacer: Pacer, encoder: PictureEncoder | None = None,
+                 renderer: Callable[[], SceneRenderer] = SceneRenderer) -> None:
+        """``encoder``: how the picture reaches the terminal (default: half-blocks);
+        ``renderer`` makes the render thread's renderer."""
         super().__init__()
         self._pacer = pacer
         self._encoder = encoder
+        self._renderer = renderer
         self._arm: tuple[Arm, int] | None = None  # the arm and the muscle shown
         # Real pixels are painted over the cells: notifications keep to the side panel.
         self.set_class(isinstance(encoder, ImageEncoder), "-pixels")
@@ -87,7 +91,8 @@ class MainScreen(LatestSize[None]):
 
     def compose(self) -> ComposeResult:
         with Horizontal(id="workspace"):
-            yield Viewport(self._pacer, id="viewport", encoder=self._encoder)
+            yield Viewport(self._pacer, id="viewport", encoder=self._encoder,
+                           renderer=self._renderer)
             with SidePanel(id="side"):
                 # The forces first: shown only once asked for, and then the numbers
                 # brief in a short panel (SHORT).

@@ -30,7 +30,7 @@ half-blocks, so that a dialog opens over the arm rather than over a blank.
 from __future__ import annotations
 
 from time import monotonic
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 from rich.color import Color
@@ -47,7 +47,7 @@ from textual.widget import Widget
 
 from biceps.engine.config import rgb
 from biceps.engine.scene import Scene
-from biceps.engine.scene_renderer import supersampling
+from biceps.engine.scene_renderer import SceneRenderer, supersampling
 from biceps.terminal.palette import Palette256, background_colour
 from biceps.terminal.palette import colour as palette_colour
 from biceps.tui.ahead import Preparation, preparing
@@ -105,16 +105,18 @@ class Viewport(Widget, can_focus=True):
             self.steps = steps
 
     def __init__(self, pacer: Pacer, *, id: str | None = None,
-                 encoder: PictureEncoder | None = None) -> None:
+                 encoder: PictureEncoder | None = None,
+                 renderer: Callable[[], SceneRenderer] = SceneRenderer) -> None:
         """``pacer`` says when the next frame may be made; ``encoder`` puts frames on the
-        terminal (default: :class:`HalfBlocks`), from the render thread."""
+        terminal (default: :class:`HalfBlocks`), from the render thread; ``renderer``
+        makes that thread's renderer."""
         super().__init__(id=id)
         encoder = HalfBlocks() if encoder is None else encoder
         palette: Palette256 | None = None
         if isinstance(encoder, TextCells):
             palette, encoder = self._for_this_terminal(encoder)
         self._palette, self._encoder = palette, encoder
-        self._frames: Frames[Picture] = Frames(encoder, pacer, palette)
+        self._frames: Frames[Picture] = Frames(encoder, pacer, palette, renderer=renderer)
         self._scene: Scene | None = None
         self._strips: list[Strip] = []
         # For each line of the picture, framed in the border's sides: (line, sides, framed).
