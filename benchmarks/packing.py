@@ -1,6 +1,6 @@
 """What laying the six muscles of configs/elbow.toml costs: a contraction step's scene mesh
-(what a held ``c`` costs before the picture is drawn), and the first mesh after an edit of
-a muscle's node (when the muscles' leans round the humerus are chosen anew), against the
+(what a held ``c`` costs before the picture is drawn), and an edit of a muscle's node with
+its first mesh (the edit chooses the muscles' leans round the humerus anew), against the
 same two for the single biceps of configs/biceps.toml; optionally against another tree.
 
     .venv/bin/python benchmarks/packing.py [--runs N] [--against PYTHON]
@@ -40,9 +40,8 @@ def measure() -> dict[str, float]:
             scene_mesh(arm.stepped(-0.1 * (i % 5 + 1))[0], config.render)
             steps.append(time.process_time() - start)
             radius = arm.muscle.radii[5] + 0.001 * (i + 1)  # a new shape: leans chosen anew
-            edited = arm.with_muscle(arm.muscle.with_radius(5, radius))
             start = time.process_time()
-            scene_mesh(edited, config.render)
+            scene_mesh(arm.with_muscle(arm.muscle.with_radius(5, radius)), config.render)
             edits.append(time.process_time() - start)
         figures[f"step {name}"] = 1000 * statistics.median(steps)
         figures[f"edit {name}"] = 1000 * statistics.median(edits)

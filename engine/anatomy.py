@@ -17,7 +17,7 @@ from biceps.engine.bones import bone_meshes, bone_spheres
 from biceps.engine.lies import Lie
 from biceps.engine.mesh import Mesh, bent_muscle_mesh, muscle_mesh
 from biceps.engine.muscle import Muscle
-from biceps.engine.packing import arm_leans, centreline, laid_offsets, laying_order
+from biceps.engine.packing import centreline, laid_offsets, laying_order
 from biceps.engine.path import MusclePath, ViaPath
 from biceps.engine.stations import section_radii
 
@@ -40,7 +40,7 @@ def arm_parts(arm: Arm, segments: int, hidden: frozenset[str] = frozenset(),
     order, then the driver over them; each keeps clear of the bones and of those laid
     before it (hidden or not, so hiding one moves no other). On arm26's skeleton each lies
     in layers round the humerus (``engine/layers.py``); on the simple one, one laid over
-    others turns to its own side of them, round the humerus (`arm_leans`).
+    others turns to its own side of them, round the humerus (:attr:`Arm.leans`).
     """
     if arm.skeleton.model == "arm26":
         return _layered_parts(arm, segments, hidden, companion_segments)
@@ -88,7 +88,7 @@ def _simple_parts(arm: Arm, segments: int, hidden: frozenset[str],
     spheres = bone_spheres(skeleton, pose)
     names, muscles, paths = arm.names, arm.muscles, arm.paths  # properties: built per read
     laid = {}
-    for index, lean in zip(laying_order(arm), arm_leans(arm)):
+    for index, lean in zip(laying_order(arm), arm.leans.each):
         centres, radii = spheres
         around = segments if index == 0 or companion_segments is None else companion_segments
         mesh, (more_centres, more_radii) = muscle_part(
@@ -104,7 +104,7 @@ def muscle_part(muscle: Muscle, path: MusclePath, flexion: float,
                 lean: float | None = None) -> tuple[Mesh, tuple[np.ndarray, np.ndarray]]:
     """One muscle on its path at ``flexion`` degrees, its sections moved clear of
     ``spheres`` (centres (k, 3), radii (k,)); if it lies beside other muscles, turned by
-    ``lean`` (radians, `arm_leans`) to its side of them and bowed out once (None: it lies
+    ``lean`` (radians, :attr:`Arm.leans`) to its side of them and bowed out once (None: it lies
     on bare bone). Also its sections as spheres, which the muscles laid after it keep
     clear of. A straight path's sections stay parallel, so the mesh keeps the muscle's
     volume exactly (``engine/mesh.py``)."""

@@ -10,7 +10,7 @@ have at that angle. A single-muscle arm is the case with no companions.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -18,6 +18,7 @@ from biceps.engine.bounds import cm
 from biceps.engine.companion import Companion, check_reach
 from biceps.engine.errors import RefusedChange
 from biceps.engine.muscle import Muscle
+from biceps.engine.packing import Leans, chosen_leans
 from biceps.engine.path import MusclePath, PathDrive, ViaPath
 from biceps.engine.skeleton import ArmPose, Skeleton, forearm_frame
 
@@ -42,6 +43,15 @@ class Arm:
     name: str = "muscle"
     companions: tuple[Companion, ...] = ()
     driver_path: ViaPath | None = None
+    leans: Leans | None = field(default=None, repr=False, compare=False)
+    """How far each muscle turns round the humerus (``engine/packing.py``), which its mesh
+    reads: chosen when the arm is made with muscles of new shapes, and kept by its poses."""
+
+    def __post_init__(self) -> None:
+        # A pose (at_length, tensed_arm) keeps the shapes, and the leans come with them;
+        # any other change is checked, so that no leans of other shapes are kept.
+        if self.leans is None or not self.leans.fit(self):
+            object.__setattr__(self, "leans", chosen_leans(self))
 
     @property
     def drive(self) -> Skeleton | PathDrive:

@@ -6,12 +6,14 @@ Each muscle is laid clear of the bones and of the muscles laid before it
 axis by its lean, towards its own side of the arm. The leans are chosen once for an arm's
 muscles (their rest shapes, paths and skeleton) over the whole of the elbow's range, never
 pose by pose: so no muscle jumps to another side as the elbow bends, and a pose costs no
-search. ``engine/anatomy.py`` lays them so at each pose.
+search. An arm made with muscles of new shapes chooses them (``engine/arm.py``), and its
+poses carry them on; ``engine/anatomy.py`` lays the muscles so at each pose, posing
+nothing again.
 """
 
 from __future__ import annotations
 
-from functools import lru_cache
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -33,49 +35,52 @@ def laying_order(arm: Arm) -> list[int]:
     return [*range(1, len(arm.names)), 0]
 
 
-def arm_leans(arm: Arm) -> tuple[float | None, ...]:
-    """Each muscle's lean (radians, see ``clearance.path_offsets``), in `laying_order`: None for the
-    first, which lies on bare bone, and for a single muscle.
-
-    A lean is chosen once for the muscles' shapes and paths, over the whole range of the
-    elbow (the muscle reaching least far at the worst of its two ends and its middle), not
-    at each pose: so no muscle jumps from one side to another as the elbow moves, and a
-    pose costs no search.
-    """
-    if not arm.companions:
-        return (None,)
-    return _chosen_leans(_Shapes(arm))
-
-
 JUDGED_POSES = 3
 """The poses a lean is judged at: the two ends of the elbow's range and its middle."""
 
 
-class _Shapes:
-    """An arm, hashed and compared by what its leans depend on: its muscles' rest shapes,
-    their paths and the skeleton, not its pose."""
+@dataclass(frozen=True, eq=False)
+class Leans:
+    """Each muscle's lean (radians, see ``clearance.path_offsets``) in `laying_order`, and
+    the shapes they were chosen for (`shapes_of`). An arm carries them from pose to pose."""
 
-    def __init__(self, arm: Arm):
-        self.arm = arm
-        self.key = (arm.names, arm.skeleton, arm.paths, arm.min_length, arm.max_length,
-                    tuple((m.reference_length, m.volume_mode, m.reference_radii.tobytes(),
-                           m.growth.tobytes()) for m in arm.muscles))
+    shapes: tuple
+    each: tuple[float | None, ...]  # None: on bare bone, or laid in layers (arm26)
 
-    def __hash__(self) -> int:
-        return hash(self.key)
-
-    def __eq__(self, other) -> bool:
-        return isinstance(other, _Shapes) and self.key == other.key
+    def fit(self, arm: Arm) -> bool:
+        """Whether these are ``arm``'s leans: it has the shapes they were chosen for."""
+        return self.shapes == shapes_of(arm)
 
 
-@lru_cache(maxsize=16)
-def _chosen_leans(shapes: _Shapes) -> tuple[float | None, ...]:
-    """`arm_leans` for an arm's shapes: each muscle in `laying_order` laid at each judged
-    pose over those before it, with the lean whose worst reach there is least (`best_lean`,
-    bounded by how far the muscles before it reach already)."""
-    arm = shapes.arm
-    poses = [arm.at_length(length) for length in np.linspace(*arm.length_range(), JUDGED_POSES)]
-    spheres = [bone_spheres(pose.skeleton, pose.pose) for pose in poses]
+def shapes_of(arm: Arm) -> tuple:
+    """What an arm's leans depend on: its muscles' rest shapes (each shared by every
+    length of its muscle, so compared by identity), their paths, the skeleton and the
+    limits on the driver's length; not its pose."""
+    return (arm.skeleton, arm.driver_path, arm.min_length, arm.max_length, arm.muscle.rest,
+            tuple((companion.path, companion.muscle.rest) for companion in arm.companions))
+
+
+def chosen_leans(arm: Arm) -> Leans:
+    """``arm``'s leans, chosen once for its muscles' shapes and paths over the whole range
+    of the elbow (the muscle reaching least far at the worst of its two ends and its
+    middle), not at each pose: so no muscle jumps from one side to another as the elbow
+    moves, and a pose costs no search. None for the first muscle, which lies on bare
+    bone, for a single muscle, for arm26's, which lie in layers (``engine/layers.py``), and
+    for an arm with no length to take (which loading refuses)."""
+    unlaid = (None,) * len(arm.names)
+    low, high = arm.length_range()
+    if not arm.companions or arm.skeleton.model == "arm26" or low > high:
+        return Leans(shapes_of(arm), unlaid)
+    return Leans(shapes_of(arm), _leans_over_the_range(arm, low, high))
+
+
+def _leans_over_the_range(arm: Arm, low: float, high: float) -> tuple[float | None, ...]:
+    """Each muscle in `laying_order` laid at each judged pose over those before it, with
+    the lean whose worst reach there is least (`best_lean`, bounded by how far the muscles
+    before it reach already)."""
+    poses = [_judged_pose(arm, length) for length in np.linspace(low, high, JUDGED_POSES)]
+    spheres = [pose.spheres for pose in poses]
+    paths = arm.paths
     leans, bound = [], 0.0
     for index in laying_order(arm):
         lean = None
@@ -83,18 +88,34 @@ def _chosen_leans(shapes: _Shapes) -> tuple[float | None, ...]:
             reaches = []
             for pose, (centres, radii) in zip(poses, spheres):
                 muscle = pose.muscles[index]
-                points, axes = centreline(muscle, pose.paths[index], pose.flexion)
+                points, axes = centreline(muscle, paths[index], pose.flexion)
                 turns, far = lean_reaches(points, axes, muscle.radii, centres, radii)
                 reaches.append(far)
             lean = best_lean(turns, np.max(reaches, axis=0), bound)
         leans.append(lean)
         for at, (pose, (centres, radii)) in enumerate(zip(poses, spheres)):
-            more_centres, more_radii = _laid_sections(pose.muscles[index], pose.paths[index],
+            more_centres, more_radii = _laid_sections(pose.muscles[index], paths[index],
                                                      pose.flexion, (centres, radii), lean)
             bound = max(bound, reach(more_centres, more_radii))
             spheres[at] = (np.concatenate([centres, more_centres]),
                            np.concatenate([radii, more_radii]))
     return tuple(leans)
+
+
+@dataclass(frozen=True)
+class _JudgedPose:
+    flexion: float  # degrees
+    muscles: tuple[Muscle, ...]  # in the order of Arm.names
+    spheres: tuple[np.ndarray, np.ndarray]  # the bones' (centres (k, 3), radii (k,))
+
+
+def _judged_pose(arm: Arm, length: float) -> _JudgedPose:
+    """The muscles and bones of the simple skeleton's arm with its driver at ``length``
+    cm, as `Arm.at_length` poses them, without making an arm (which would choose leans)."""
+    flexion = arm.drive.flexion(length)
+    muscles = (arm.muscle.at_length(length),
+               *(companion.at_flexion(flexion).muscle for companion in arm.companions))
+    return _JudgedPose(flexion, muscles, bone_spheres(arm.skeleton, arm.skeleton.pose(length)))
 
 
 def centreline(muscle: Muscle, path: MusclePath, flexion: float):
