@@ -25,6 +25,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from biceps.engine.arm26_frame import HEAD, world_point
 from biceps.engine.mesh import Mesh, revolved_mesh
 from biceps.engine.skeleton import ArmPose, Skeleton
 
@@ -200,7 +201,7 @@ def _arm26_bones() -> dict[str, tuple[bool, tuple[Part, ...]]]:
 
     parts = {"scapula": list(_arm26_scapula()), "humerus": list(_arm26_humerus()),
              "radius": list(_arm26_radius()), "ulna": list(_arm26_ulna())}
-    axes = {"scapula": None, "humerus": (np.zeros(3), arm26.HEAD),
+    axes = {"scapula": None, "humerus": (np.zeros(3), HEAD),
             "radius": (RADIUS_TOP, RADIUS_END), "ulna": (ULNA_TOP, ULNA_END)}
     for name in arm26.MUSCLES:
         path = arm26.path(name)
@@ -225,8 +226,6 @@ ULNA_END = np.array([-0.9, -23.0, 3.0])  # the ulna's head, inside the radius's 
 
 
 def _arm26_humerus() -> tuple[Part, ...]:
-    from biceps.engine.arm26 import HEAD
-
     up = HEAD / np.linalg.norm(HEAD)
     return (
         # The shaft, from inside the condyles to inside the head (arm26's humerus leans
@@ -253,7 +252,7 @@ def _arm26_humerus() -> tuple[Part, ...]:
 
 
 def _arm26_scapula() -> tuple[Part, ...]:
-    from biceps.engine.arm26 import HEAD, POINTS, world_point
+    from biceps.engine.arm26 import POINTS
 
     supraglenoid = world_point(*POINTS["BIClong"][0])
     infraglenoid = world_point(*POINTS["TRIlong"][0])
@@ -288,7 +287,7 @@ def _arm26_scapula() -> tuple[Part, ...]:
 
 
 def _arm26_radius() -> tuple[Part, ...]:
-    from biceps.engine.arm26 import POINTS, world_point
+    from biceps.engine.arm26 import POINTS
 
     return (_along(RADIUS_TOP, RADIUS_END,
                    [[0.0, 1.05], [0.04, 1.05], [0.07, 0.7], [0.15, 0.62], [0.45, 0.68],
@@ -310,7 +309,7 @@ def _ridge(point: np.ndarray, start: np.ndarray, end: np.ndarray, radius: float,
 
 
 def _arm26_ulna() -> tuple[Part, ...]:
-    from biceps.engine.arm26 import POINTS, world_point
+    from biceps.engine.arm26 import POINTS
 
     coronoid = world_point(*POINTS["BRA"][-1])
     return (

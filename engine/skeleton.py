@@ -38,6 +38,7 @@ import numpy as np
 
 from biceps.engine.bounds import (ATTACHMENT_ALONG, ATTACHMENT_REACH, BONE, BONE_RATIO,
                                   COORDINATE, FLEXION_SPAN, OutOfBounds, exactly, finite)
+from biceps.engine.arm26_frame import HEAD
 from biceps.engine.errors import RefusedChange
 
 Bone = Literal["upper_arm", "forearm"]
@@ -137,8 +138,6 @@ class Skeleton:
         """(3,) the humeral head's centre in world space: up the humerus's axis, or where
         arm26 has it (2.26 cm to the outside: its hinge is not square to the humerus)."""
         if self.model == "arm26":
-            from biceps.engine.arm26 import HEAD  # arm26's paths build on this module
-
             return HEAD.copy()
         return np.array([0.0, self.upper_arm, 0.0])
 

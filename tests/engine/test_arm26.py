@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from biceps.engine import arm26
+from biceps.engine import arm26, arm26_frame
 
 # OpenSim 4.6 on arm26 at every 5 degrees: benchmarks/arm26_reference.py --write made it.
 REFERENCE = json.loads((Path(__file__).parent / "data" / "arm26_elbow.json").read_text())
@@ -51,7 +51,7 @@ def test_each_path_wraps_where_arm26s_does_and_meets_the_surface_where_it_does(n
     # within a degree, so they stand up to 0.9 mm from the exact ones.
     path = arm26.path(name)
     for flexion, theirs in zip(FLEXIONS, REFERENCE["path_points_mm"][name]):
-        touches = [arm26.world_point("r_humerus", np.array(where) / 1000.0)
+        touches = [arm26_frame.world_point("r_humerus", np.array(where) / 1000.0)
                    for label, *where in theirs if label.startswith("pwpt")]
         places, ways = path.segments(flexion)
         ours = [point for way in ways if way is not None for point in way.points[[0, -1]]]
@@ -67,12 +67,12 @@ def test_the_via_points_are_arm26s_in_its_frames():
         for flexion, theirs in zip(FLEXIONS[::13], REFERENCE["path_points_mm"][name][::13]):
             ours = path.places(flexion)
             for mine, (label, *where) in zip(ours[[0, -1]], (theirs[0], theirs[-1])):
-                expected = arm26.world_point("r_humerus", np.array(where) / 1000.0)
+                expected = arm26_frame.world_point("r_humerus", np.array(where) / 1000.0)
                 assert np.linalg.norm(mine - expected) <= 1e-5, (name, label)
 
 
 def test_the_hinge_is_the_worlds_z_and_the_head_stands_straight_above_the_elbow():
-    np.testing.assert_allclose(arm26.WORLD @ np.array(arm26.ELBOW_AXIS)
-                               / np.linalg.norm(arm26.ELBOW_AXIS), [0.0, 0.0, 1.0], atol=1e-12)
-    assert arm26.HEAD[0] == pytest.approx(0.0, abs=1e-12)
-    assert arm26.HEAD[1] == pytest.approx(28.98, abs=0.01)
+    np.testing.assert_allclose(arm26_frame.WORLD @ np.array(arm26_frame.ELBOW_AXIS)
+                               / np.linalg.norm(arm26_frame.ELBOW_AXIS), [0.0, 0.0, 1.0], atol=1e-12)
+    assert arm26_frame.HEAD[0] == pytest.approx(0.0, abs=1e-12)
+    assert arm26_frame.HEAD[1] == pytest.approx(28.98, abs=0.01)
