@@ -331,7 +331,7 @@ def app(config: Path, colors: str, fps: float | None, graphics: str | None,
         _keys_are_keys()
     loaded = load_config(config)  # fail here, before the terminal switches screens
     _check_terminal()
-    if asides is not None:  # the longest compilation of a first run starts before Textual loads
+    if asides is not None:  # a first run's longest compilation starts before Textual loads
         asides.start_rasterizer(loaded.render.shading)
     from biceps.tui.app import run_app
 

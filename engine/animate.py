@@ -79,13 +79,13 @@ def render_cycle(scene: Scene, cycle: FlexCycle, width: int, height: int,
     """
     check_cycle(scene, cycle, width, height)
     scenes = [scene.with_arm(scene.arm.at_flexion(float(flexion))) for flexion in cycle.poses()]
-    renderer = SceneRenderer()
-    # One camera for the whole cycle, fitted to every pose: framed pose by pose, the
-    # shoulder would drift and the arm grow and shrink as the forearm swings.
-    framed = np.concatenate([renderer.outline(posed) for posed in scenes])
-    pictures = []
-    for posed in scenes:
-        pictures.append(renderer.render(posed, width, height, framed).copy())
-        if progress is not None:
-            progress(len(pictures), len(scenes))
+    with SceneRenderer() as renderer:
+        # One camera for the whole cycle, fitted to every pose: framed pose by pose, the
+        # shoulder would drift and the arm grow and shrink as the forearm swings.
+        framed = np.concatenate([renderer.outline(posed) for posed in scenes])
+        pictures = []
+        for posed in scenes:
+            pictures.append(renderer.render(posed, width, height, framed).copy())
+            if progress is not None:
+                progress(len(pictures), len(scenes))
     return [pictures[index] for index in cycle.order()]

@@ -72,7 +72,8 @@ def test_the_via_points_are_arm26s_in_its_frames():
 
 
 def test_the_hinge_is_the_worlds_z_and_the_head_stands_straight_above_the_elbow():
-    np.testing.assert_allclose(arm26_frame.WORLD @ np.array(arm26_frame.ELBOW_AXIS)
-                               / np.linalg.norm(arm26_frame.ELBOW_AXIS), [0.0, 0.0, 1.0], atol=1e-12)
+    axis = np.array(arm26_frame.ELBOW_AXIS)
+    np.testing.assert_allclose(arm26_frame.WORLD @ axis / np.linalg.norm(axis), [0.0, 0.0, 1.0],
+                               atol=1e-12)
     assert arm26_frame.HEAD[0] == pytest.approx(0.0, abs=1e-12)
     assert arm26_frame.HEAD[1] == pytest.approx(28.98, abs=0.01)
