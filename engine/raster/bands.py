@@ -42,6 +42,7 @@ HITS = 4096
 enough for most triangles' whole share of a band, few enough to stay in the L1 and L2
 caches."""
 
+
 def default_threads() -> int:
     """The threads ``BICEPS_THREADS`` asks for (`settings.drawing_threads`, which refuses
     what is not a whole number from 1), else this process's cores."""
@@ -85,7 +86,7 @@ class Bands:
         pool = self._pool
         if pool is None and len(tasks) > 1:
             if self._own_pool is None:
-                self._own_pool = band_pool(max(self.threads, len(tasks)))
+                self._own_pool = band_pool(self.threads)
             pool = self._own_pool
         futures = [pool.submit(task) for task in tasks[1:]]
         try:
