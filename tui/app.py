@@ -195,7 +195,7 @@ class BicepsApp(AppHooks):
     def __init__(self, config: Config, fps: float | None = None,
                  encoder: PictureEncoder | None = None, notice: str | None = None,
                  rescue: Rescue | None = None,
-                 renderer: Callable[[], SceneRenderer] = SceneRenderer,
+                 renderer: Callable[[], SceneRenderer] | None = None,
                  when_up: Callable[[], object] | None = None) -> None:
         """``fps``: the most frames a second the picture is redrawn at, up to Textual's
         limit (``TEXTUAL_FPS``, 60 unless set), the cap if None; ``encoder``: how the
@@ -203,7 +203,7 @@ class BicepsApp(AppHooks):
         is up (what the terminal could show, see terminal/choose.py). ``rescue``: start on the
         model an app left when it ended on an error, and offer to save it. ``renderer``:
         makes the renderer of each thread that draws (the pictures, an export), each closed
-        once done. ``when_up``: called once the app is up (the command freezes the heap
+        once done (None: a SceneRenderer of its own each). ``when_up``: called once the app is up (the command freezes the heap
         there, ``biceps/cli.py``)."""
         super().__init__()
         # Textual paints no more often than its limit, but the viewport writes most frames
@@ -770,7 +770,7 @@ class BicepsApp(AppHooks):
     @work(thread=True, group="export")
     def _write_picture(self, scene: Scene, path: Path, width: int, height: int) -> None:
         try:
-            with self._renderer() as renderer:
+            with (self._renderer or SceneRenderer)() as renderer:
                 write_png(path, renderer.render(scene, width, height))
         except BicepsError as error:
             reason = str(error)

@@ -31,6 +31,9 @@ class Renderer:
         Renderer.started.release()
         return np.full((height, width, 3), scene, np.uint8)
 
+    def close(self) -> None:
+        pass
+
 
 class Encoder:
     """The frame's value and shape as its picture; fails on a frame of 99."""

@@ -70,9 +70,9 @@ class MainScreen(LatestSize[None]):
     BINDINGS = [Binding("h", "toggle_panel", "Hide or show the side panel", show=False)]
 
     def __init__(self, pacer: Pacer, encoder: PictureEncoder | None = None,
-                 renderer: Callable[[], SceneRenderer] = SceneRenderer) -> None:
+                 renderer: Callable[[], SceneRenderer] | None = None) -> None:
         """``encoder``: how the picture reaches the terminal (default: half-blocks);
-        ``renderer`` makes the render thread's renderer."""
+        ``renderer`` makes the render thread's renderer (see ``tui/rendering.py``)."""
         super().__init__()
         self._pacer = pacer
         self._encoder = encoder

@@ -106,10 +106,10 @@ class Viewport(Widget, can_focus=True):
 
     def __init__(self, pacer: Pacer, *, id: str | None = None,
                  encoder: PictureEncoder | None = None,
-                 renderer: Callable[[], SceneRenderer] = SceneRenderer) -> None:
+                 renderer: Callable[[], SceneRenderer] | None = None) -> None:
         """``pacer`` says when the next frame may be made; ``encoder`` puts frames on the
         terminal (default: :class:`HalfBlocks`), from the render thread; ``renderer``
-        makes that thread's renderer."""
+        makes that thread's renderer (see :class:`Frames`)."""
         super().__init__(id=id)
         encoder = HalfBlocks() if encoder is None else encoder
         palette: Palette256 | None = None
