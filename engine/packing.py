@@ -67,11 +67,13 @@ def chosen_leans(arm: Arm) -> Leans:
     moves, and a pose costs no search. None for the first muscle, which lies on bare
     bone, for a single muscle, for arm26's, which lie in layers (``engine/layers.py``), and
     for an arm with no length to take (which loading refuses)."""
-    unlaid = (None,) * len(arm.names)
+    unlaid = Leans(shapes_of(arm), (None,) * len(arm.names))
+    if not arm.companions or arm.skeleton.model == "arm26":
+        return unlaid
     low, high = arm.length_range()
-    if not arm.companions or arm.skeleton.model == "arm26" or low > high:
-        return Leans(shapes_of(arm), unlaid)
-    return Leans(shapes_of(arm), _leans_over_the_range(arm, low, high))
+    if low > high:
+        return unlaid
+    return Leans(unlaid.shapes, _leans_over_the_range(arm, low, high))
 
 
 def _leans_over_the_range(arm: Arm, low: float, high: float) -> tuple[float | None, ...]:
