@@ -253,12 +253,12 @@ def _preload(config: str) -> None:
     asked = os.environ.get("BICEPS_THREADS")
     os.environ["BICEPS_THREADS"] = "1"  # every stage on this thread, even a large mesh's
     try:
-        picture = SceneRenderer().render(Scene.of(load_config(config)), 8, 8)
+        with SceneRenderer() as renderer:
+            HalfBlocks().encode(renderer.render(Scene.of(load_config(config)), 8, 8))
     finally:
         os.environ.pop("BICEPS_THREADS")
         if asked is not None:
             os.environ["BICEPS_THREADS"] = asked
-    HalfBlocks().encode(picture)
     minimized("\x1b[1m \x1b[0m")  # the output minimizer's kernel
     if threading.active_count() > 1:
         raise RuntimeError("a thread started while preloading; a fork would not be safe")
