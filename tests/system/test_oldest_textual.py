@@ -42,12 +42,13 @@ def test_the_app_runs_on_the_oldest_textual_the_pin_allows(private_path, oldest,
     assert doctor.returncode == 0, doctor.stderr
     assert f"the private path (Textual {OLDEST}'s internals" in doctor.stdout
     # The picture (drawn through the private path's strips), help opened and closed, the
-    # model contracted, then quit without saving it.
+    # model contracted, then quit without saving it. A fresh install compiles every kernel
+    # before its first picture: the time limit is test_first_run's.
     run = converse([str(oldest / "biceps")], cwd=tmp_path, script=[
         ("▀".encode(), b"?"),
         (b"Turn, move and scale", b"\x1b"),
         (b"", b"cc"),
         (b"", b"q"),
         (b"Don't save", b"n"),
-    ], again=5)
+    ], again=5, timeout=300)
     assert run.exit_code == 0, run.output[-2000:]
