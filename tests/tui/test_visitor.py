@@ -11,7 +11,9 @@ from biceps.tui import visitor
 from biceps.tui.app import BicepsApp
 from biceps.tui.parse import parse_path
 from biceps.tui.screens.prompt import Prompt
+from biceps.tui.screens.record import RecordPrompt
 from biceps.tui.suggest import PathSuggester
+from decode import decoded
 from waiting import until
 
 
@@ -149,3 +151,26 @@ async def test_saving_in_the_browser_downloads_the_model(biceps, own_folder, in_
     ((name, data),) = in_a_browser
     assert name == "mine.toml"
     assert b"pose_length" in data and data == (own_folder / "mine.toml").read_bytes()
+
+
+async def test_a_recording_in_the_browser_is_a_download(biceps, own_folder, in_a_browser):
+    async with biceps() as session:
+        await session.pilot.press("v")
+        await until(session.pilot, lambda: isinstance(session.app.screen, RecordPrompt))
+        values = ["cycle.gif", "96x54", "0", "130", "8", "25", "bounce"]
+        for box, value in zip(session.app.screen.query(Input), values):
+            box.value = value
+        await session.pilot.press("enter")
+
+        def recording() -> list:
+            return [worker for worker in session.app.workers if worker.group == "record"]
+
+        await until(session.pilot, lambda: recording() or in_a_browser)
+        if recording():
+            await session.app.workers.wait_for_complete(recording())
+        await until(session.pilot, lambda: in_a_browser)
+    ((name, data),) = in_a_browser
+    assert name == "cycle.gif"
+    assert data == (own_folder / name).read_bytes()
+    frames = decoded(own_folder / name)
+    assert len(frames) == 8 and frames[0].shape == (54, 96, 3)
