@@ -95,6 +95,13 @@ def visit_command(config: Path, scratch: Path, limits: Limits, folder: Path | No
     return "exec " + shlex.join(words + (["--folder", str(folder)] if folder else []))
 
 
+async def _turn_away(websocket: Any, note: str) -> Any:
+    """Say ``note`` in the page's terminal, close its websocket and return it."""
+    await websocket.send_bytes(f"\r\n{note}\r\n".encode())
+    await websocket.close()
+    return websocket
+
+
 async def _read_at_most(content: Any, largest: int) -> bytes:
     """The request body from ``content`` (aiohttp's StreamReader), stopping once it is
     longer than ``largest`` bytes."""
@@ -320,15 +327,11 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
             websocket = web.WebSocketResponse(heartbeat=15)
             await websocket.prepare(request)
             if self.visitors >= max_visitors:  # two pages opened at once for the last place
-                await websocket.send_bytes(
-                    f"\r\nbiceps is full: all {max_visitors} places are taken.\r\n".encode())
-                await websocket.close()
-                return websocket
+                return await _turn_away(
+                    websocket, f"biceps is full: all {max_visitors} places are taken.")
             token = request.match_info.get("token")
             if token is not None and self.pages.pop(token, None) is None:
-                await websocket.send_bytes(b"\r\nThis page is out of date: reload it.\r\n")
-                await websocket.close()
-                return websocket
+                return await _turn_away(websocket, "This page is out of date: reload it.")
             folder = Path(tempfile.mkdtemp(prefix="visitor-", dir=scratch))
             width = server.to_int(request.query.get("width", "80"), 80)
             height = server.to_int(request.query.get("height", "24"), 24)

@@ -203,8 +203,8 @@ class BicepsApp(AppHooks):
         is up (what the terminal could show, see terminal/choose.py). ``rescue``: start on the
         model an app left when it ended on an error, and offer to save it. ``renderer``:
         makes the renderer of each thread that draws (the pictures, an export), each closed
-        once done (None: a SceneRenderer of its own each). ``when_up``: called once the app is up (the command freezes the heap
-        there, ``biceps/cli.py``)."""
+        once done (None: a SceneRenderer of its own each). ``when_up``: called once the app
+        is up (the command freezes the heap there, ``biceps/cli.py``)."""
         super().__init__()
         # Textual paints no more often than its limit, but the viewport writes most frames
         # itself (tui/widgets/viewport.py): the pacer keeps them to the limit too.
