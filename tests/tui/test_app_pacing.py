@@ -186,6 +186,15 @@ def test_the_cap_applies_after_the_answer_too(timers):
 # answers, and draws it meanwhile.
 
 
+@pytest.fixture
+def patient(monkeypatch) -> None:
+    """The pacer waits for the stand-in terminal's answers as long as a test may take to
+    give them: under load, seconds can pass between a question and the test's answer, and
+    a pacer that gave up would take the terminal not to answer and ask no more."""
+    monkeypatch.setattr(biceps.tui.pacing, "FIRST_ANSWER", 600.0)
+    monkeypatch.setattr(biceps.tui.pacing, "ANSWER", 600.0)
+
+
 class Terminal:
     """Stands in for a terminal behind a headless app: records questions, answers on cue."""
 
@@ -220,7 +229,8 @@ async def _a_while(pilot) -> None:
         await pilot.pause(0.01)
 
 
-async def test_no_frame_is_shown_until_the_terminal_has_taken_the_last(private_path, config):
+async def test_no_frame_is_shown_until_the_terminal_has_taken_the_last(private_path, config,
+                                                                      patient):
     app = BicepsApp(config)
     terminal = Terminal(app)
     async with app.run_test(size=(100, 30)) as pilot:
@@ -268,7 +278,7 @@ async def _waiting_for_an_answer(app, pilot, terminal: Terminal) -> Viewport:
 
 
 async def test_the_next_frame_is_drawn_while_the_terminal_takes_the_last(private_path, config,
-                                                                       monkeypatch):
+                                                                       monkeypatch, patient):
     draws = Draws(monkeypatch)
     app = BicepsApp(config)
     terminal = Terminal(app)
@@ -287,7 +297,7 @@ async def test_the_next_frame_is_drawn_while_the_terminal_takes_the_last(private
 
 @pytest.mark.parametrize("stale_after, first_shown", [(60.0, 1), (0.0, 2)])
 async def test_a_frame_drawn_ahead_too_long_ago_is_drawn_again_from_the_newest_scene(
-        private_path, config, monkeypatch, stale_after, first_shown):
+        private_path, config, monkeypatch, patient, stale_after, first_shown):
     # Over a slow link the answer takes a while: by then the frame drawn ahead is old, and
     # if the keys have moved on since, it would show them that late.
     monkeypatch.setattr(biceps.tui.rendering, "STALE_AFTER", stale_after)
