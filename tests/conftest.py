@@ -1,4 +1,5 @@
-"""Shared fixtures: a private copy of the bundled model, and a state folder of the run's own."""
+"""Shared fixtures: a private copy of the bundled model, a state folder of the run's own, and no
+terminal size in the environment."""
 
 from __future__ import annotations
 
@@ -16,6 +17,15 @@ def _state_home(tmp_path_factory: pytest.TempPathFactory) -> None:
     # Crash reports (tui/crash_report.py) of the apps the tests break on purpose go here,
     # not into the home folder of whoever runs the tests; the apps they start inherit it.
     os.environ["XDG_STATE_HOME"] = str(tmp_path_factory.mktemp("state"))
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _sizes_from_the_terminal() -> None:
+    # The apps the tests start in ptys and real terminals must take their size from the
+    # terminal, as a user's do. Textual takes COLUMNS and LINES over it, and pytest-xdist's
+    # workers have them set (80x24).
+    for name in ("COLUMNS", "LINES"):
+        os.environ.pop(name, None)
 
 
 @pytest.fixture

@@ -7,6 +7,10 @@ import sys
 import sysconfig
 from pathlib import Path
 
+import pytest
+
+from once import once_a_run
+
 
 def fresh_venv(where: Path, wheel: Path, *requirements: str) -> Path:
     """A fresh virtual environment in ``where`` holding ``wheel`` and ``requirements``
@@ -27,3 +31,11 @@ def fresh_venv(where: Path, wheel: Path, *requirements: str) -> Path:
         capture_output=True, text=True, check=True).stdout.strip()
     Path(purelib, "dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
     return venv / "bin"
+
+
+def shared_venv(tmp_path_factory: pytest.TempPathFactory, name: str, wheel: Path,
+                *requirements: str) -> Path:
+    """The bin folder of :func:`fresh_venv`, made once a run under ``name``."""
+    where = once_a_run(tmp_path_factory, name,
+                       lambda folder: fresh_venv(folder, wheel, *requirements))
+    return where / "venv" / "bin"

@@ -9,6 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from once import once_a_run
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
@@ -20,13 +22,15 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
 
 @pytest.fixture(scope="session")
 def wheel(tmp_path_factory) -> Path:
-    """A wheel built from this repository, once a run (two builds at once share the
-    repository's build/ folder and break each other)."""
-    where = tmp_path_factory.mktemp("wheel")
-    built = subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(where), str(ROOT)],
-        capture_output=True, text=True, timeout=600,
-    )
-    assert built.returncode == 0, built.stderr
-    (built_wheel,) = where.glob("biceps-*.whl")
+    """A wheel built from this repository, once a run (see tests/once.py)."""
+
+    def build(where: Path) -> None:
+        built = subprocess.run(
+            [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(where),
+             str(ROOT)],
+            capture_output=True, text=True, timeout=600,
+        )
+        assert built.returncode == 0, built.stderr
+
+    (built_wheel,) = once_a_run(tmp_path_factory, "wheel", build).glob("biceps-*.whl")
     return built_wheel

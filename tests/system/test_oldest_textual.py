@@ -11,7 +11,7 @@ import pytest
 from packaging.requirements import Requirement
 
 from biceps.tui import textual_private
-from installs import fresh_venv
+from installs import shared_venv
 from pty_app import converse
 
 
@@ -29,7 +29,7 @@ OLDEST = oldest_allowed("textual")
 @pytest.fixture(scope="module")
 def oldest(tmp_path_factory, wheel) -> Path:
     """The bin folder of a fresh venv holding the wheel and the oldest Textual allowed."""
-    return fresh_venv(tmp_path_factory.mktemp("oldest-textual"), wheel, f"textual=={OLDEST}")
+    return shared_venv(tmp_path_factory, "oldest-textual", wheel, f"textual=={OLDEST}")
 
 
 def test_the_pin_allows_no_textual_older_than_the_seam_knows():

@@ -17,7 +17,7 @@ from PIL import Image
 import biceps.engine
 import biceps.terminal
 from biceps.engine.config import DEFAULT_CONFIG
-from installs import fresh_venv
+from installs import shared_venv
 from pty_app import first_picture
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -164,7 +164,7 @@ def test_a_real_process_prints_no_traceback(name):
 @pytest.fixture(scope="module")
 def installed(tmp_path_factory, wheel) -> Path:
     """The bin folder of a fresh virtual environment holding the wheel."""
-    return fresh_venv(tmp_path_factory.mktemp("installed"), wheel)
+    return shared_venv(tmp_path_factory, "installed", wheel)
 
 
 def test_a_wheel_installs_one_biceps_package_and_the_bundled_models(installed):

@@ -6,7 +6,8 @@ The bursts are bytes, as a terminal sends them, read the way the app reads its t
 (with tui/terminal_input.py's decoder and parser, Textual's made lenient) and handed to the
 app's driver as events, so an invalid byte or a broken sequence reaches the app as it would
 for real. Hypothesis draws the bursts: each example is one run of the app on a copy of the
-bundled model, of 20 bursts of 150 inputs. Each burst is drawn as a seed that a generator
+bundled model, of 20 bursts of 150 inputs; the examples are shared out among a few tests, so
+that the test run's workers take them side by side. Each burst is drawn as a seed that a generator
 turns into its inputs, as tests/engine/test_muscle.py draws lengths: hypothesis can then
 draw, and shrink, a run of thousands of inputs, which it could not draw one by one.
 """
@@ -18,6 +19,7 @@ import random
 import shutil
 import time
 
+import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 from rich.console import Console
@@ -33,6 +35,7 @@ from biceps.tui.widgets.stats import Stats
 
 EVENTS = 20_000  # at least, over all the examples
 EXAMPLES = 6
+PARTS = 3  # tests the examples are shared out among
 BURSTS = 20  # a burst (and at times a resize), then a wait for the app to take it, ...
 BURST = 150  # inputs in a burst (each a key, a paste, a sequence, or a few random bytes)
 
@@ -90,7 +93,8 @@ bursts = st.lists(st.tuples(st.integers(0, 2**32 - 1),
                   min_size=BURSTS, max_size=BURSTS)
 
 
-def test_no_input_ends_the_app_and_the_model_keeps_its_rules(tmp_path, monkeypatch):
+@pytest.mark.parametrize("part", range(PARTS))
+def test_no_input_ends_the_app_and_the_model_keeps_its_rules(tmp_path, monkeypatch, part):
     monkeypatch.chdir(tmp_path)  # exports and saves land here
     # Whatever name is typed, the file goes in this folder.
     monkeypatch.setattr(app_module, "parse_path", lambda text: tmp_path / parse_path(text).name)
@@ -99,7 +103,7 @@ def test_no_input_ends_the_app_and_the_model_keeps_its_rules(tmp_path, monkeypat
     # No shrinking: each run takes seconds, and shrinking one takes many minutes, so a
     # failure is reported as found (its seeds reproduce it, and the example database
     # replays it first next time).
-    @settings(max_examples=EXAMPLES, deadline=None,
+    @settings(max_examples=EXAMPLES // PARTS, deadline=None,
               phases=[Phase.explicit, Phase.reuse, Phase.generate],
               suppress_health_check=[HealthCheck.too_slow])
     @given(bursts)
@@ -108,7 +112,7 @@ def test_no_input_ends_the_app_and_the_model_keeps_its_rules(tmp_path, monkeypat
 
     run()
     print(f"{sum(delivered):,} events in {len(delivered)} runs")
-    assert sum(delivered) >= EVENTS
+    assert sum(delivered) >= EVENTS / PARTS
 
 
 DEEPEST = 6  # the main screen, the help, a palette, a dialog and its question, a palette
