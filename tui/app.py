@@ -294,9 +294,11 @@ class BicepsApp(AppHooks):
 
     def _answers(self, event: events.Event) -> bool:
         """Whether to answer this input from the terminal, or leave it out."""
-        # Keys and the mouse still queued as the app closes come after its screens have
-        # gone, and Textual, handing them to the screen in front, raised ScreenStackError.
-        if not self.screen_stack:
+        # Keys and the mouse still queued as the app closes: Textual closes the screens (and
+        # their widgets, children first) while the app still handles its queue, and a key
+        # then reached a widget whose children had gone (NoMatches) or no screen at all
+        # (ScreenStackError).
+        if not self.is_running or not self.screen_stack:
             return False
         if self.is_headless:  # keys from a script, which waits for each to be answered
             return True
