@@ -22,9 +22,16 @@ CHROMEDRIVER = "/usr/bin/chromedriver"
 
 RECORD_THE_TERMINAL = """
 window.__sizes = [];
+window.__received = "";
 const Original = window.WebSocket;
 window.WebSocket = function (url, protocols) {
     const socket = new Original(url, protocols);
+    const decoder = new TextDecoder();
+    socket.addEventListener("message", (event) => {
+        if (event.data instanceof ArrayBuffer) {
+            window.__received += decoder.decode(event.data, {stream: true});
+        }
+    });
     const send = socket.send.bind(socket);
     socket.send = (data) => {
         if (typeof data === "string" && data.startsWith('["resize"')) {
@@ -126,6 +133,19 @@ def terminal_geometry(driver) -> tuple[int, int, float, float, float, float] | N
         return None
     columns, rows, left, top, width, height = found
     return columns, rows, left, top, width / columns, height / rows
+
+
+def forget_received(driver) -> None:
+    """Start :func:`received` afresh."""
+    driver.execute_script("window.__received = '';")
+
+
+def received(driver, text: str) -> bool:
+    """Whether the page's terminal has been sent ``text`` since :func:`forget_received`
+    (colours and cursor moves left out): a dialog has opened, say."""
+    return driver.execute_script(
+        "return window.__received.replace(/\\x1b\\[[0-9;?]*[A-Za-z]/g, '')"
+        ".includes(arguments[0]);", text)
 
 
 def press(driver, keys: str) -> None:

@@ -243,8 +243,13 @@ class Run:
                                         start_new_session=True)
 
     def report(self) -> str:
-        return _until(lambda: self.doctor.read_text() if self.doctor.exists() else None,
-                      WAIT, "the doctor's report")
+        try:
+            return _until(lambda: self.doctor.read_text() if self.doctor.exists() else None,
+                          WAIT, "the doctor's report")
+        except AssertionError:
+            self.screenshot()  # what the terminal shows instead
+            raise AssertionError(f"never came: the doctor's report; the screen is in "
+                                 f"{self.folder / 'screen.png'}") from None
 
     def screenshot(self) -> np.ndarray:
         shot = self.folder / "screen.png"

@@ -145,7 +145,6 @@ def _scratch_of(pids: set[int]) -> set[Path]:
 
 
 def test_a_full_server_says_so_and_a_closed_page_ends_its_visitors_process(tmp_path):
-    before = set(_visitors())
     with served(DEFAULT_CONFIG, "--max-visitors", "1") as url:
         socket_url = url.replace("http", "ws") + "ws?width=100&height=30"
 
@@ -153,7 +152,7 @@ def test_a_full_server_says_so_and_a_closed_page_ends_its_visitors_process(tmp_p
             async with aiohttp.ClientSession() as session:
                 async with session.ws_connect(socket_url) as first:
                     await _first_picture(first)
-                    own = set(_visitors()) - before  # its shell, and the app
+                    own = _visitors_of(url)  # its shell, and the app
                     assert own
                     # This server's scratch folder (another's, on a shared machine, has
                     # visitors of its own).
@@ -296,6 +295,12 @@ def test_without_the_zygote_visitors_still_get_the_app_and_the_server_says_so(tm
         asyncio.run(visit())
 
 
+def _visitors_of(url: str) -> set[int]:
+    """The visitors' processes of the server listening at ``url`` (the tests run side by
+    side, and other servers have visitors of their own)."""
+    return set(_visitors()) & _tree_of_server(url)
+
+
 def _tree_of_server(url: str) -> set[int]:
     """The processes under the server listening at ``url``."""
     port = url.rsplit(":", 1)[1].strip("/")
@@ -330,7 +335,6 @@ def test_a_visitor_over_its_memory_is_refused_the_export_and_goes_on(tmp_path):
 
 
 def test_a_visitor_is_told_when_its_time_is_up_and_its_place_is_freed():
-    before = set(_visitors())
     with served(DEFAULT_CONFIG, "--visitor-minutes", "0.2", "--max-visitors", "1") as url:
         socket_url = url.replace("http", "ws") + "ws"
 
@@ -340,7 +344,7 @@ def test_a_visitor_is_told_when_its_time_is_up_and_its_place_is_freed():
                     said = await _read_until(websocket, b"minutes are up", 120)
                     # The page stays open with the note on it, its app gone, and the one
                     # place is free for the next visitor.
-                    _until(lambda: not set(_visitors()) - before, "the visitor's process ending")
+                    _until(lambda: not _visitors_of(url), "the visitor's process ending")
                     async with session.ws_connect(socket_url) as next_one:
                         await _first_picture(next_one)
                     assert not websocket.closed
