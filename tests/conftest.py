@@ -12,6 +12,24 @@ import pytest
 from biceps.engine.config import DEFAULT_CONFIG, Config, load_config
 
 
+def pytest_xdist_auto_num_workers(config: pytest.Config) -> int:
+    """``-n auto``: two workers a core. Half of a test's time, on average, is spent waiting
+    for processes it started (servers, terminals, the app in a pty) or on a pilot's pause,
+    which another worker's test fills."""
+    return 2 * len(os.sched_getaffinity(0))
+
+
+def pytest_xdist_setupnodes(config: pytest.Config, specs: list) -> None:
+    """Before the workers start: a frame's kernels, compiled (or loaded) here once. Every
+    worker draws, and on a cold cache (a fresh clone) each would compile them at the same
+    time; they load them from the cache instead."""
+    from biceps.engine.coldstart import prepare_kernels
+    from biceps.engine.settings import SHADINGS
+
+    for shading in SHADINGS:
+        prepare_kernels(shading)
+
+
 @pytest.fixture(autouse=True, scope="session")
 def _state_home(tmp_path_factory: pytest.TempPathFactory) -> None:
     # Crash reports (tui/crash_report.py) of the apps the tests break on purpose go here,
