@@ -37,10 +37,13 @@ from biceps.engine.names import printable
 from biceps.engine.settings import SEGMENTS, SUPERSAMPLING, Colors, Graphics, drawing_threads
 
 if TYPE_CHECKING:
+    import numpy as np
+
     from biceps.engine.arm import Arm
     from biceps.engine.coldstart import Asides
     from biceps.engine.movie import Progress
     from biceps.engine.scene import Scene
+    from biceps.engine.scene_renderer import SceneRenderer
     from biceps.tui.app import AppProcess
 
 
@@ -786,6 +789,23 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
         # Forks: see coldstart. Half-blocks in a terminal are most likely a small picture.
         height = size[1] if size else SMALL_PICTURE if printed == "ansi" else PNG_SIZE[1]
         prepare_kernels(scene.render.shading, supersampling(scene.render, height))
+    with SceneRenderer() as renderer:  # its threads stopped when done
+        frame = _snapshot_drawn(renderer, scene, size, printed, colors)
+    if frame is None:
+        return  # printed
+    size = size or PNG_SIZE
+    write_png(output, frame)
+    click.echo(f"wrote {printable(output)} ({size[0]}x{size[1]})", err=True)
+
+
+def _snapshot_drawn(renderer: SceneRenderer, scene: Scene, size: tuple[int, int] | None,
+                    printed: str | None, colors: str) -> np.ndarray | None:
+    """``snapshot``'s picture drawn by ``renderer``: printed to standard output in the
+    form ``printed`` (None then), or the frame for the PNG."""
+
+    def draw(width: int, height: int) -> np.ndarray:
+        return renderer.render(scene, width, height)
+
     if printed == "ansi":
         from biceps.engine.config import rgb
         from biceps.terminal import choose, detect
@@ -795,26 +815,22 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
         asked = scene.render.colors if colors == "auto" else colors
         system = choose.colours(asked, answers, detect.Place.here()).system
         with _stdout(half_blocks=True):
-            print_picture(lambda width, height: SceneRenderer().render(scene, width, height),
-                          rgb(scene.render.background), size, system)
-        return
+            print_picture(draw, rgb(scene.render.background), size, system)
+        return None
     if printed is not None:
         from biceps.terminal.printed import print_image
 
         with _stdout():
-            print_image(printed,
-                        lambda width, height: SceneRenderer().render(scene, width, height), size)
-        return
+            print_image(printed, draw, size)
+        return None
     size = size or PNG_SIZE
     try:
-        frame = SceneRenderer().render(scene, *size)
+        return draw(*size)
     except MemoryError:
         raise BicepsError(
             f"not enough memory to render {size[0]}x{size[1]} with {scene.render.ssaa}x"
             f"{scene.render.ssaa} supersampling; try a smaller --size or --ssaa"
         ) from None
-    write_png(output, frame)
-    click.echo(f"wrote {printable(output)} ({size[0]}x{size[1]})", err=True)
 
 
 @main.command(short_help="Write the flex cycle as a GIF, APNG, WebP or MP4 animation.")
