@@ -1,5 +1,6 @@
 """Shared fixtures: a private copy of the bundled model, a state folder of the run's own, and no
-terminal size in the environment."""
+terminal size in the environment; and the run's workers (pytest-xdist): how many, and the
+kernels they load, compiled before they start."""
 
 from __future__ import annotations
 
