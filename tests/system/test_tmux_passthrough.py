@@ -26,6 +26,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 PLACEHOLDER = "\U0010eeee".encode()
 SEXTANT = re.compile("[\U0001fb00-\U0001fb3b]")
+XTVERSION = b"\x1b[>q"  # tmux asks the outer terminal its name and version
 
 
 def _read_until(master: int, output: bytearray, condition, timeout: float,
@@ -33,17 +34,19 @@ def _read_until(master: int, output: bytearray, condition, timeout: float,
     """Read what tmux writes until ``condition`` holds, answering tmux's XTVERSION question
     as kitty ``version``."""
     deadline = time.monotonic() + timeout
+    answered = output.count(XTVERSION)
     while time.monotonic() < deadline:
         if condition(bytes(output)):
             return True
         if select.select([master], [], [], 0.1)[0]:
             try:
-                data = os.read(master, 1 << 16)
+                output += os.read(master, 1 << 16)
             except OSError:
                 return condition(bytes(output))
-            if b"\x1b[>q" in data:
+            # Counted in all that was read: a read may end in the middle of a question.
+            for _ in range(output.count(XTVERSION) - answered):
                 os.write(master, b"\x1bP>|kitty(" + version + b")\x1b\\")
-            output += data
+                answered += 1
     return condition(bytes(output))
 
 

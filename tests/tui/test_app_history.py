@@ -5,9 +5,31 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+import biceps.tui.app
 from biceps.engine.config import load_config
 from biceps.tui.history import KEPT_NODES, RUN_GAP, History
 from biceps.tui.widgets.node_table import NodeTable
+
+
+class Clock:
+    """The app's clock, moved only by the test: whether length changes are one run (closer
+    than RUN_GAP) must not depend on how fast a loaded machine hands the app its keys."""
+
+    def __init__(self) -> None:
+        self.now = 1000.0
+
+    def __call__(self) -> float:
+        return self.now
+
+    def advance(self, seconds: float) -> None:
+        self.now += seconds
+
+
+@pytest.fixture(autouse=True)
+def clock(monkeypatch) -> Clock:
+    clock = Clock()
+    monkeypatch.setattr(biceps.tui.app, "monotonic", clock)
+    return clock
 
 
 async def test_a_deleted_node_comes_back_with_undo_and_goes_again_with_redo(biceps):
@@ -24,11 +46,11 @@ async def test_a_deleted_node_comes_back_with_undo_and_goes_again_with_redo(bice
         assert session.app.scene.arm.muscle.node_count == 14
 
 
-async def test_undo_takes_back_length_changes_and_node_edits_one_by_one(biceps, config):
+async def test_undo_takes_back_length_changes_and_node_edits_one_by_one(biceps, config, clock):
     async with biceps() as session:
         app = session.app
         await session.pilot.press("C", "C")
-        await session.pilot.pause(RUN_GAP)  # two steps, not one run of length changes
+        clock.advance(RUN_GAP)  # two steps, not one run of length changes
         await session.pilot.press("c", "tab", "slash")
         assert (app.scene.arm.length, app.scene.arm.muscle.node_count) == (30.9, 29)
         await session.pilot.press("ctrl+z")
@@ -149,11 +171,11 @@ async def test_undo_and_redo_with_nothing_to_do_say_so(biceps, key):
         assert np.array_equal(before.arm.muscle.radii, session.app.scene.arm.muscle.radii)
 
 
-async def test_a_key_at_a_limit_is_no_step_to_undo(biceps):
+async def test_a_key_at_a_limit_is_no_step_to_undo(biceps, clock):
     async with biceps() as session:
         await session.pilot.press(*["X"] * 4)  # to the straight arm, and against it
         straight = session.app.scene.arm.length
-        await session.pilot.pause(RUN_GAP)
+        clock.advance(RUN_GAP)
         await session.pilot.press("X", "ctrl+z")
         assert session.app.scene.arm.length == 33.0  # back past the run, not to itself
         assert straight > 33.0
