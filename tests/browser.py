@@ -148,6 +148,15 @@ def received(driver, text: str) -> bool:
         ".includes(arguments[0]);", text)
 
 
+def until_received(driver, text: str, timeout: float = 120.0) -> None:
+    """Wait until :func:`received` says ``text`` has come."""
+    deadline = time.monotonic() + timeout
+    while not received(driver, text):
+        if time.monotonic() > deadline:
+            raise AssertionError(f"never came: {text!r}")
+        time.sleep(0.1)
+
+
 def press(driver, keys: str) -> None:
     """Type ``keys`` into the page's terminal."""
     from selenium.webdriver.common.by import By

@@ -28,8 +28,8 @@ from biceps.engine.scene_renderer import SceneRenderer
 from biceps.terminal.cells import SHAPES, CellRows
 from biceps.tui.app import DRAG_TURN
 from biceps.tui.changes import length_changed, turned
-from browser import (browser, forget_received, missing, press, received, served,
-                     terminal_geometry)
+from browser import (browser, forget_received, missing, press, served, terminal_geometry,
+                     until_received)
 from pictures import cell_pixels
 
 SIDE = 32  # the side panel's columns, shown from 100 columns on
@@ -136,8 +136,7 @@ def test_a_browser_shows_the_app_turns_contracts_and_downloads_a_png(path, tmp_p
             assert _difference(shown, before_keys) > 2 * after  # no longer the first view
             forget_received(driver)
             press(driver, "e")
-            _until(lambda: True if received(driver, "Export a PNG") else None,
-                   "the export dialog")
+            until_received(driver, "Export a PNG")
             press(driver, "\n")  # biceps.png, 1920x1080, as offered
             png = _until(lambda: next(iter(downloads.glob("*.png")), None), "the download")
             _until(lambda: True if not list(downloads.glob("*.crdownload")) else None,
@@ -208,15 +207,14 @@ def test_a_browser_uploads_a_model_opens_it_and_turns_it_with_the_mouse(tmp_path
 
             forget_received(driver)
             press(driver, Keys.CONTROL + "o" + Keys.NULL)
-            _until(lambda: True if received(driver, "Open a configuration") else None,
-                   "the open dialog")
+            until_received(driver, "Open a configuration")
             driver.save_screenshot(str(tmp_path / "open-dialog.png"))
             # Pasted, as one input: a loaded machine may fall so far behind a burst of keys
             # that the app leaves some out (tui/behind.py). The dialog's field is selected,
             # so the paste replaces it.
             forget_received(driver)
             driver.execute_script(PASTE, "mine.toml")
-            _until(lambda: True if received(driver, "mine.toml") else None, "the name pasted")
+            until_received(driver, "mine.toml")
             press(driver, "\n")
             _shows(driver, toy, tmp_path, "opened")
 
