@@ -87,6 +87,7 @@ from biceps.tui.suggest import ModelSuggester, PathSuggester
 from biceps.tui.terminal_input import read_terminal_leniently
 from biceps.tui import textual_private, visitor
 from biceps.tui.textual_private import AppHooks, colour_system, write
+from biceps.tui.web_packets import one_packet_at_a_time
 from biceps.tui.widgets.node_table import NodeTable
 from biceps.tui.widgets.plots import Plots
 from biceps.tui.widgets.recorder import Recorder, Recording
@@ -251,10 +252,11 @@ class BicepsApp(AppHooks):
         return MainScreen(self.pacer, self._encoder, self._renderer)
 
     def get_driver_class(self) -> type[Driver]:
-        # Textual's own driver, reading stray bytes as U+FFFD (tui/terminal_input.py) and
-        # sending only the colour codes that change (tui/sgr.py) once it can (tui/ahead.py).
+        # Textual's own driver, reading stray bytes as U+FFFD (tui/terminal_input.py),
+        # sending only the colour codes that change (tui/sgr.py) once it can (tui/ahead.py),
+        # and under biceps serve, writing one packet at a time (tui/web_packets.py).
         read_terminal_leniently()
-        return lean_once_ready(super().get_driver_class())
+        return lean_once_ready(one_packet_at_a_time(super().get_driver_class()))
 
     def ending_on(self, error: BaseException) -> None:
         # Textual ends the app on an error nothing caught: note it, so that run_app can
