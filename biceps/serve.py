@@ -44,6 +44,10 @@ PAGE_LIFE = 300.0
 """Seconds a page's token waits for its websocket; a page connects at once when it loads."""
 MOST_PAGES = 1000
 """Tokens at most waiting for their websockets (pages loaded, their tabs closed at once)."""
+CHUNK_PATIENCE = 60.0
+"""Seconds the server waits for a visitor's app to send the next chunk of a download it asked
+for. textual-serve's own 4 s ran out on a loaded server, and the visitor's download was lost;
+a slow chunk only makes the download slower."""
 PAGE = Path(__file__).with_name("templates")
 
 
@@ -154,6 +158,10 @@ def make_server(config: Path, host: str, port: int, max_visitors: int, scratch: 
                 limits: Limits, zygote: subprocess.Popen | None = None) -> Any:
     """A textual-serve Server for ``config`` (see :func:`serve`)."""
     server = textual_serve()
+    from textual_serve import download_manager
+
+    # Read on every chunk it waits for: textual-serve has no option for it.
+    download_manager.DOWNLOAD_TIMEOUT = CHUNK_PATIENCE
     from aiohttp import web
     import aiohttp_jinja2
 

@@ -28,8 +28,8 @@ from biceps.engine.scene_renderer import SceneRenderer
 from biceps.terminal.cells import SHAPES, CellRows
 from biceps.tui.app import DRAG_TURN
 from biceps.tui.changes import length_changed, turned
-from browser import (browser, forget_received, missing, press, served, terminal_geometry,
-                     until_received)
+from browser import (browser, forget_received, missing, press, received, served,
+                     terminal_geometry, until_received)
 from pictures import cell_pixels
 
 SIDE = 32  # the side panel's columns, shown from 100 columns on
@@ -105,6 +105,23 @@ def _shows(driver, scene: Scene, tmp_path: Path, name: str) -> float:
                              f"channel (the bound {MATCH}); see {tmp_path}") from None
 
 
+def _downloaded(driver, downloads: Path, tmp_path: Path) -> Path:
+    """Wait for the PNG to be downloaded whole; if it never is, say what the app and the
+    server said of it, and keep a screenshot."""
+    try:
+        png = _until(lambda: next(iter(downloads.glob("*.png")), None), "the download")
+        _until(lambda: True if not list(downloads.glob("*.crdownload")) else None,
+               "the download's end")
+        return png
+    except AssertionError as error:
+        Image.fromarray(_screenshot(driver).astype(np.uint8)).save(tmp_path / "export.png")
+        handed_over = received(driver, "downloading")
+        log = (tmp_path / "serve.log").read_text(errors="replace").splitlines()
+        said = [line for line in log if "WARNING" in line or "ERROR" in line]
+        raise AssertionError(f"{error}; the app said it handed the file over: {handed_over}; "
+                             f"the server warned: {said}; see {tmp_path}") from None
+
+
 def _needs_the_browser() -> None:
     """Skip without Chromium and its driver, selenium or textual-serve; in CI, fail."""
     gone = missing()
@@ -138,9 +155,7 @@ def test_a_browser_shows_the_app_turns_contracts_and_downloads_a_png(path, tmp_p
             press(driver, "e")
             until_received(driver, "Export a PNG")
             press(driver, "\n")  # biceps.png, 1920x1080, as offered
-            png = _until(lambda: next(iter(downloads.glob("*.png")), None), "the download")
-            _until(lambda: True if not list(downloads.glob("*.crdownload")) else None,
-                   "the download's end")
+            png = _downloaded(driver, downloads, tmp_path)
         finally:
             driver.quit()
     assert png.name == "biceps.png"

@@ -59,6 +59,31 @@ async def _first_picture(websocket) -> bytes:
             return seen
 
 
+async def test_a_download_waits_for_a_chunk_longer_than_textual_serve_would(tmp_path):
+    # textual-serve gave up on a visitor's app that took over 4 s to send a chunk (a loaded
+    # server), and the download never came.
+    from biceps.serve import Limits, make_server
+
+    manager = make_server(DEFAULT_CONFIG, "localhost", free_port(), 1, tmp_path,
+                          Limits(memory=500, minutes=1)).download_manager
+
+    class App:  # answers the request for the chunk late, then the end of the file
+        app_service_id = "app"
+
+        async def send_meta(self, meta: dict) -> bool:
+            delay = 4.3 if not received else 0.0  # textual-serve waited 4 s
+            asyncio.get_running_loop().call_later(delay, lambda: asyncio.ensure_future(
+                manager.chunk_received("key", b"" if received else b"chunk")))
+            return True
+
+    received = []
+    await manager.create_download(app_service=App(), delivery_key="key", file_name="a.png",
+                                  open_method="download", mime_type="image/png")
+    async for chunk in manager.download("key"):
+        received.append(chunk)
+    assert received == [b"chunk"]
+
+
 def test_without_the_extra_the_message_names_it(tmp_path):
     hidden = tmp_path / "textual_serve"
     hidden.mkdir()
