@@ -777,11 +777,12 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
                                "--iterm to print to the terminal")
     if output is not None:
         check_writable(output, ".png", read=config)
+        size = size or PNG_SIZE  # printed, it is as wide as the terminal unless asked
     else:
         _writable_stdout(half_blocks=printed == "ansi")  # before any work
     scene = posed_scene(config, length, flexion, **overrides)
-    if size is not None or output is not None:  # (printed, as wide as the terminal)
-        width, height = size or PNG_SIZE
+    if size is not None:
+        width, height = size
         check_picture(width, height, supersampling(scene.render, height))  # before any work
     if _own_process():
         from biceps.engine.coldstart import prepare_kernels
@@ -793,7 +794,6 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
         frame = _snapshot_drawn(renderer, scene, size, printed, colors)
     if frame is None:
         return  # printed
-    size = size or PNG_SIZE
     write_png(output, frame)
     click.echo(f"wrote {printable(output)} ({size[0]}x{size[1]})", err=True)
 
@@ -801,7 +801,7 @@ def snapshot(config: Path, output: Path | None, size: tuple[int, int] | None,
 def _snapshot_drawn(renderer: SceneRenderer, scene: Scene, size: tuple[int, int] | None,
                     printed: str | None, colors: str) -> np.ndarray | None:
     """``snapshot``'s picture drawn by ``renderer``: printed to standard output in the
-    form ``printed`` (None then), or the frame for the PNG."""
+    form ``printed`` (None then), or the frame for the PNG, of ``size``."""
 
     def draw(width: int, height: int) -> np.ndarray:
         return renderer.render(scene, width, height)
@@ -823,7 +823,6 @@ def _snapshot_drawn(renderer: SceneRenderer, scene: Scene, size: tuple[int, int]
         with _stdout():
             print_image(printed, draw, size)
         return None
-    size = size or PNG_SIZE
     try:
         return draw(*size)
     except MemoryError:

@@ -17,6 +17,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Iterator
 
+from waiting import came
+
 CHROMIUM = "/usr/bin/chromium"
 CHROMEDRIVER = "/usr/bin/chromedriver"
 
@@ -150,11 +152,7 @@ def received(driver, text: str) -> bool:
 
 def until_received(driver, text: str, timeout: float = 120.0) -> None:
     """Wait until :func:`received` says ``text`` has come."""
-    deadline = time.monotonic() + timeout
-    while not received(driver, text):
-        if time.monotonic() > deadline:
-            raise AssertionError(f"never came: {text!r}")
-        time.sleep(0.1)
+    came(lambda: received(driver, text) or None, repr(text), timeout, step=0.1)
 
 
 def press(driver, keys: str) -> None:

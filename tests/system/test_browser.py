@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import io
 import os
-import time
 from pathlib import Path
 
 import numpy as np
@@ -31,6 +30,7 @@ from biceps.tui.changes import length_changed, turned
 from browser import (browser, forget_received, missing, press, received, served,
                      terminal_geometry, until_received)
 from pictures import cell_pixels
+from waiting import came
 
 SIDE = 32  # the side panel's columns, shown from 100 columns on
 WAIT = 120.0  # seconds for a picture to come, at most: a loaded machine starts slowly
@@ -71,20 +71,10 @@ def _screenshot(driver) -> np.ndarray:
                       dtype=int)
 
 
-def _until(condition, what: str, timeout: float = WAIT):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        found = condition()
-        if found is not None:
-            return found
-        time.sleep(0.3)
-    raise AssertionError(f"never came: {what}")
-
-
 def _shows(driver, scene: Scene, tmp_path: Path, name: str) -> float:
     """Wait until the page shows ``scene``'s picture; its mean difference per channel. The
     screenshot that showed it is kept as ``name``.png."""
-    geometry = _until(lambda: terminal_geometry(driver), "the terminal's size")
+    geometry = came(lambda: terminal_geometry(driver), "the terminal's size")
     pixels = _expected(scene, *geometry[:2])
     best = [np.inf]
 
@@ -98,7 +88,7 @@ def _shows(driver, scene: Scene, tmp_path: Path, name: str) -> float:
         return None
 
     try:
-        return _until(matching, f"the picture of {name}")
+        return came(matching, f"the picture of {name}")
     except AssertionError:
         Image.fromarray(_screenshot(driver).astype(np.uint8)).save(tmp_path / f"{name}.png")
         raise AssertionError(f"{name}: the picture never matched, at best {best[0]:.1f} per "
@@ -109,8 +99,8 @@ def _downloaded(driver, downloads: Path, tmp_path: Path) -> Path:
     """Wait for the PNG to be downloaded whole; if it never is, say what the app and the
     server said of it, and keep a screenshot."""
     try:
-        png = _until(lambda: next(iter(downloads.glob("*.png")), None), "the download")
-        _until(lambda: True if not list(downloads.glob("*.crdownload")) else None,
+        png = came(lambda: next(iter(downloads.glob("*.png")), None), "the download")
+        came(lambda: True if not list(downloads.glob("*.crdownload")) else None,
                "the download's end")
         return png
     except AssertionError as error:
@@ -190,7 +180,7 @@ def _upload_status(driver, expected: str, kind: str) -> str:
         text = status.text
         return text if expected in text and status.get_attribute("class") == f"-{kind}" else None
 
-    return _until(said, f"the upload bar saying {expected!r}")
+    return came(said, f"the upload bar saying {expected!r}")
 
 
 def test_a_browser_uploads_a_model_opens_it_and_turns_it_with_the_mouse(tmp_path):

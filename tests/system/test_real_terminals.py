@@ -44,6 +44,7 @@ from biceps.engine.scene_renderer import SceneRenderer
 from biceps.terminal.cells import SHAPES, CellRows
 from biceps.terminal.palette import Palette256
 from pictures import cell_pixels
+from waiting import came
 
 ROOT = Path(__file__).resolve().parents[2]
 SCREEN = (1600, 1000)  # Xvfb's, in pixels: room for a maximised xterm
@@ -244,8 +245,8 @@ class Run:
 
     def report(self) -> str:
         try:
-            return _until(lambda: self.doctor.read_text() if self.doctor.exists() else None,
-                          WAIT, "the doctor's report")
+            return came(lambda: self.doctor.read_text() if self.doctor.exists() else None,
+                        "the doctor's report", WAIT)
         except AssertionError:
             self.screenshot()  # what the terminal shows instead
             raise AssertionError(f"never came: the doctor's report; the screen is in "
@@ -276,16 +277,6 @@ class Run:
             except subprocess.TimeoutExpired:
                 os.killpg(self.process.pid, 9)
                 self.process.wait()
-
-
-def _until(condition, timeout: float, what: str, step: float = 0.3):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        result = condition()
-        if result is not None:
-            return result
-        time.sleep(step)
-    raise AssertionError(f"never came: {what}")
 
 
 @dataclass(frozen=True)
@@ -401,7 +392,7 @@ def _matching(run: Run, expected: Expected, mean: float) -> tuple[np.ndarray, tu
         return (screen, corner, difference) if difference < mean else None
 
     try:
-        return _until(shown, WAIT, "the picture", step=0.5)
+        return came(shown, "the picture", WAIT, step=0.5)
     except AssertionError:
         raise AssertionError(f"the picture never matched: at best {best[0]:.2f} per channel, "
                              f"the bound {mean}") from None
@@ -441,12 +432,12 @@ def test_the_app_shows_its_picture(name, display, sshd, tmp_path, request):
             assert "Gi=" not in title and "\x1b" not in title
         if cell.screens:
             run.keys("question")  # the help screen, over the picture
-            _until(lambda: True if _muscle(run.screenshot()).sum() == 0 else None, 30,
-                   "the help over the picture")
+            came(lambda: True if _muscle(run.screenshot()).sum() == 0 else None,
+                 "the help over the picture", 30)
             run.keys("Escape")
             _matching(run, expected, cell.mean)
             run.keys("q")
-            _until(lambda: True if _muscle(run.screenshot()).sum() == 0 else None, 30,
-                   "a screen without the picture after quitting")
+            came(lambda: True if _muscle(run.screenshot()).sum() == 0 else None,
+                 "a screen without the picture after quitting", 30)
     finally:
         run.close()

@@ -19,6 +19,7 @@ import pytest
 from biceps.engine.config import DEFAULT_CONFIG
 from biceps.zygote import VISITOR_NAME, ZYGOTE_NAME
 from browser import free_port, served
+from waiting import came
 
 pytest.importorskip("aiohttp", reason="comes with textual-serve, the serve extra")
 import aiohttp  # noqa: E402
@@ -39,13 +40,8 @@ def _visitors() -> list[int]:
     return found
 
 
-def _until(condition, what: str, timeout: float = 60.0):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if condition():
-            return
-        time.sleep(0.2)
-    raise AssertionError(f"never came: {what}")
+def _until(condition, what: str, timeout: float = 60.0) -> None:
+    came(lambda: condition() or None, what, timeout, step=0.2)
 
 
 async def _first_picture(websocket) -> bytes:
@@ -67,6 +63,8 @@ async def test_a_download_waits_for_a_chunk_longer_than_textual_serve_would(tmp_
     manager = make_server(DEFAULT_CONFIG, "localhost", free_port(), 1, tmp_path,
                           Limits(memory=500, minutes=1)).download_manager
 
+    received = []
+
     class App:  # answers the request for the chunk late, then the end of the file
         app_service_id = "app"
 
@@ -76,7 +74,6 @@ async def test_a_download_waits_for_a_chunk_longer_than_textual_serve_would(tmp_
                 manager.chunk_received("key", b"" if received else b"chunk")))
             return True
 
-    received = []
     await manager.create_download(app_service=App(), delivery_key="key", file_name="a.png",
                                   open_method="download", mime_type="image/png")
     async for chunk in manager.download("key"):
