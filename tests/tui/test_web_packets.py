@@ -36,7 +36,7 @@ def _read_packets(fd: int) -> list[tuple[bytes, bytes]]:
 async def test_a_download_s_chunks_and_the_screen_s_updates_do_not_interleave(monkeypatch):
     driver_class = one_packet_at_a_time(WebDriver)
     output, output_end = os.pipe()
-    quiet_input, _ = os.pipe()
+    quiet_input, quiet_input_end = os.pipe()
     monkeypatch.setattr(sys, "__stdout__", SimpleNamespace(fileno=lambda: output_end))
     monkeypatch.setattr(sys, "__stdin__", SimpleNamespace(fileno=lambda: quiet_input))
     driver = driver_class(SimpleNamespace())
@@ -52,7 +52,8 @@ async def test_a_download_s_chunks_and_the_screen_s_updates_do_not_interleave(mo
     chunks.join()
     os.close(output_end)
     reader.join()
-    os.close(output)
+    for fd in (output, quiet_input, quiet_input_end):
+        os.close(fd)
     kinds = [kind for kind, _ in packets]
     assert kinds.count(b"D") == 200 and kinds.count(b"P") == 20 and len(kinds) == 220
     assert all(payload == UPDATE.encode() for kind, payload in packets if kind == b"D")
