@@ -9,7 +9,7 @@ the help (``?``) and the command palette.
 
 from __future__ import annotations
 
-from typing import Iterable, Sequence
+from typing import Hashable, Iterable, Sequence
 
 from textual.events import Resize
 from textual.widget import Widget
@@ -33,6 +33,7 @@ class FittedFooter(Footer):
         super().__init__(id=id, compact=True)
         self._rank = {action: rank for rank, action in enumerate(kept_longest)}
         self._laid_out_for = 0  # the width the keys were last laid out and fitted for
+        self._composed: Hashable = None  # what the keys were last composed from
 
     def on_resize(self, event: Resize) -> None:
         # Wider, a key dropped may fit again: lay them all out anew, then drop. Only for a
@@ -42,9 +43,25 @@ class FittedFooter(Footer):
             self.call_after_refresh(self.recompose)
 
     async def recompose(self) -> None:
-        # (Textual's footer recomposes whenever the keys that apply change: the focus moves)
+        # Textual's footer recomposes, mounting every key anew, each time the screen says its
+        # bindings changed: whenever the focus moves, four times as the app starts, mostly to
+        # the same keys. So only when the keys or the width differ from the last time.
+        composed_from = self._composed_from()
+        if composed_from == self._composed:
+            return
+        self._composed = composed_from
         await super().recompose()
         self.call_after_refresh(self._fit)
+
+    def _composed_from(self) -> Hashable:
+        """What Textual's footer composes its keys from (its ``compose``), and the width."""
+        if not self._bindings_ready or not self.is_attached:
+            return None
+        shown = tuple((binding.key, binding.action, binding.description, binding.group,
+                       enabled, tooltip)
+                      for _, binding, enabled, tooltip in self.screen.active_bindings.values()
+                      if binding.show or binding.key == self.app.COMMAND_PALETTE_BINDING)
+        return self.size.width, shown
 
     def _fit(self) -> None:
         """Keep the keys of most worth that fit beside the docked ones (the palette's key),
