@@ -125,3 +125,23 @@ async def test_the_help_opens_in_the_ansi_theme(biceps):
         await session.pilot.press("question_mark")
         await until(session.pilot, lambda: _help_written(session.app))
         assert session.app.failure is None
+
+
+async def test_the_footer_is_built_again_only_when_its_keys_change(biceps, monkeypatch):
+    # Textual's footer mounts every key anew whenever its screen's bindings may have
+    # changed: four times as the app started, to the same keys.
+    built = []
+    compose = FittedFooter.compose
+    monkeypatch.setattr(FittedFooter, "compose",
+                        lambda footer: (built.append(footer.size.width), compose(footer))[1])
+    async with biceps() as session:
+        await _footer_settled(session)
+        assert len([width for width in built if width]) == 1
+        built.clear()
+        await session.pilot.press("c", "right")  # the same keys apply
+        await _footer_settled(session)
+        assert built == []
+        session.app.screen.query_one(NodeTable).focus()  # its own keys too
+        await _footer_settled(session)
+        assert len(built) == 1
+        assert "edit_node" in {key.action for key in _footer_keys(session)}
