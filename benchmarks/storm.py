@@ -61,6 +61,8 @@ def main() -> int:
                 if not outcome.passed:
                     print("  shown at the end:", repr(outcome.shown_at_the_end[-1500:]),
                           flush=True)
+                    if outcome.stacks:
+                        print("  the app's threads:\n" + outcome.stacks, flush=True)
     print(f"{passed} of {total} runs passed")
     return 0 if passed == total else 1
 

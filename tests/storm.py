@@ -18,6 +18,7 @@ import random
 import re
 import select
 import shutil
+import signal
 import subprocess
 import sys
 import termios
@@ -251,6 +252,7 @@ class Outcome:
     model_untouched: bool = False
     quits_held: int = 0  # quits asked for during the storm (the palette's, the footer's)
     shown_at_the_end: str = ""
+    stacks: str = ""  # every thread's stack of an app that did not quit, as it was then
 
     @property
     def passed(self) -> bool:
@@ -320,19 +322,26 @@ def quit_app(terminal: Terminal, size: tuple[int, int], attempts: int = 8) -> fl
 # the file named first. The storm leaves out the keys that quit, but the palette's "Quit the
 # application" and a click on the footer's ask for a quit too: while the file named second
 # exists (the storm is on), such a request is logged and held, not done, as the fuzz test
-# counts it; an exit that comes another way (a fault) still ends the app.
-QUITS_LOGGED = """
-import os, sys, traceback
+# counts it; an exit that comes another way (a fault) still ends the app. On SIGUSR1 it
+# writes every thread's stack to STACKS beside the log, and its process id is in PID there.
+STACKS, PID = "stacks.txt", "pid"
+QUITS_LOGGED = f"""
+import faulthandler, os, signal, sys, traceback
 from biceps.cli import run
 from biceps.tui.app import BicepsApp
 
 log, storming = sys.argv.pop(1), sys.argv.pop(1)
+folder = os.path.dirname(log)
+stacks = open(os.path.join(folder, "{STACKS}"), "w")
+faulthandler.register(signal.SIGUSR1, file=stacks, all_threads=True)
+with open(os.path.join(folder, "{PID}"), "w") as pid:
+    pid.write(str(os.getpid()))
 
 def logged(method, hold=False):
     def logging(*args, **kwargs):
         held = hold and os.path.exists(storming)
         with open(log, "a") as out:
-            out.write(f"{method.__name__}{' (held: the storm is on)' if held else ''}:\\n"
+            out.write(f"{{method.__name__}}{{' (held: the storm is on)' if held else ''}}:\\n"
                       + "".join(traceback.format_stack()) + "\\n")
         return None if held else method(*args, **kwargs)
     return logging
@@ -343,6 +352,16 @@ BicepsApp.exit = logged(BicepsApp.exit)
 sys.argv[0] = "biceps"
 run()
 """
+
+
+def _stacks(folder: Path) -> str:
+    """Every thread's stack of the app started in ``folder``, as it is now."""
+    try:
+        os.kill(int((folder / PID).read_text()), signal.SIGUSR1)
+    except (OSError, ValueError) as error:
+        return f"no stacks: {error}"
+    time.sleep(1.0)  # written by the app's signal handler
+    return (folder / STACKS).read_text()
 
 
 def run_storm(harness: str, model: Path, folder: Path, seconds: float, seed: int,
@@ -368,6 +387,8 @@ def run_storm(harness: str, model: Path, folder: Path, seconds: float, seed: int
         outcome.alive_after = terminal.running()
         if outcome.alive_after:
             outcome.quit_seconds = quit_app(terminal, size)
+            if outcome.quit_seconds is None:
+                outcome.stacks = _stacks(folder)
         deadline = time.monotonic() + 10
         while terminal.exit_status() is None and time.monotonic() < deadline:
             time.sleep(0.2)

@@ -28,6 +28,7 @@ def test_the_app_lives_through_a_storm_and_quits_as_asked(private_path, tmp_path
     outcome = run_storm(harness, FOLDER / model, tmp_path, SECONDS, seed)
     assert sum(outcome.sent.values()) > 0
     assert outcome.alive_after, outcome.shown_at_the_end
-    assert outcome.quit_seconds is not None, outcome.shown_at_the_end
+    assert outcome.quit_seconds is not None, (outcome.shown_at_the_end
+                                              + "\nThe app's threads:\n" + outcome.stacks)
     assert outcome.exit_status == 0, outcome.shown_at_the_end
     assert outcome.model_untouched
