@@ -1,5 +1,5 @@
 """Shared fixtures: a private copy of the bundled model, a state folder of the run's own, and no
-terminal size in the environment; and the run's workers (pytest-xdist): one a core, and the
+terminal size in the environment; and the run's workers (pytest-xdist): two a core, and the
 kernels they load, compiled before they start."""
 
 from __future__ import annotations
@@ -14,9 +14,9 @@ from biceps.engine.config import DEFAULT_CONFIG, Config, load_config
 
 
 def pytest_xdist_auto_num_workers(config: pytest.Config) -> int:
-    """``-n auto``: a worker a core this process may run on. (Two a core were 10 % faster
-    on 2 cores, but at that load textual-serve's 4 s wait for a download's chunk ran out.)"""
-    return len(os.sched_getaffinity(0))
+    """``-n auto``: two workers a core this process may run on: a test that starts the app
+    waits on it about half of the time."""
+    return 2 * len(os.sched_getaffinity(0))
 
 
 def pytest_xdist_setupnodes(config: pytest.Config, specs: list) -> None:
