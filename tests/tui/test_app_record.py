@@ -12,6 +12,7 @@ from biceps.engine.sweep import flexion_range
 from biceps.tui.screens.record import RecordPrompt
 from biceps.tui.widgets.recorder import Recorder
 from decode import decoded
+from waiting import until
 
 
 async def _record(session, path, *, size="96x54", frames="8", motion="bounce") -> None:
@@ -34,17 +35,25 @@ async def _recorded(session) -> None:
     await session.pilot.pause()
 
 
-@pytest.fixture
-def held(monkeypatch) -> threading.Event:
-    """Holds every recording before it is encoded until the test sets the event."""
-    release = threading.Event()
+class Held:
+    """A recording held once every pose is rendered, before it is encoded."""
 
-    def write_when_released(*args, **kwargs):
-        assert release.wait(timeout=60), "the test never released the recording"
+    def __init__(self) -> None:
+        self.rendered = threading.Event()  # set when a recording is held
+        self.release = threading.Event()  # set by the test: encode it
+
+    def write_when_released(self, *args, **kwargs) -> None:
+        self.rendered.set()
+        assert self.release.wait(timeout=60), "the test never released the recording"
         movie.write_animation(*args, **kwargs)
 
-    monkeypatch.setattr("biceps.tui.widgets.recorder.write_animation", write_when_released)
-    return release
+
+@pytest.fixture
+def held(monkeypatch) -> Held:
+    """Holds every recording before it is encoded until the test releases it."""
+    held = Held()
+    monkeypatch.setattr("biceps.tui.widgets.recorder.write_animation", held.write_when_released)
+    return held
 
 
 async def test_v_records_the_flex_cycle_while_the_app_keeps_answering(biceps, tmp_path, held):
@@ -54,17 +63,14 @@ async def test_v_records_the_flex_cycle_while_the_app_keeps_answering(biceps, tm
         await _record(session, out)
         recorder = app.screen.query_one(Recorder)
         assert recorder.busy is not None and recorder.display
-        for _ in range(1000):  # every pose rendered, the encoding held back
-            if "encoding" in str(recorder.query_one("Label").render()):
-                break
-            await session.pilot.pause(0.01)
+        await until(session.pilot, held.rendered.is_set)
         length, yaw = app.scene.arm.length, app.scene.view.yaw
         await session.pilot.press("C", "right", "p")
         await session.settle()  # the picture caught up with the keys
         assert app.scene.arm.length == pytest.approx(length - 1.0)
         assert app.scene.view.yaw == yaw + 5.0
         assert not out.exists()  # all while the recording was still being written
-        held.set()
+        held.release.set()
         await _recorded(session)
         assert recorder.busy is None and not recorder.display
         assert any(note.message.startswith(f"Recorded {out}") for note in session.notes)
@@ -118,7 +124,7 @@ async def test_a_second_recording_waits_for_the_first(biceps, tmp_path, held):
         await session.pilot.pause()
         assert not isinstance(session.app.screen, RecordPrompt)
         assert any("Still recording" in warning for warning in session.warnings)
-        held.set()
+        held.release.set()
         await _recorded(session)
     assert (tmp_path / "first.gif").exists()
 
