@@ -239,9 +239,11 @@ class Run:
             (folder / "screenrc").write_text("startup_message off\n")
             command = ["screen", "-S", f"biceps-test-{os.getpid()}", "-c",
                        str(folder / "screenrc"), *command]
-        self.process = subprocess.Popen(_window(cell, command), env=self.environment,
-                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                                        start_new_session=True)
+        self.said = folder / "terminal.txt"  # what the terminal itself printed
+        with self.said.open("wb") as said:
+            self.process = subprocess.Popen(_window(cell, command), env=self.environment,
+                                            stdout=said, stderr=subprocess.STDOUT,
+                                            start_new_session=True)
 
     def report(self) -> str:
         try:
@@ -249,8 +251,12 @@ class Run:
                         "the doctor's report", WAIT)
         except AssertionError:
             self.screenshot()  # what the terminal shows instead
-            raise AssertionError(f"never came: the doctor's report; the screen is in "
-                                 f"{self.folder / 'screen.png'}") from None
+            ended = self.process.poll()
+            raise AssertionError(
+                f"never came: the doctor's report; the screen is in "
+                f"{self.folder / 'screen.png'}; the terminal "
+                f"{'is running' if ended is None else f'ended with {ended}'} and said: "
+                f"{self.said.read_text(errors='replace')[-2000:]!r}") from None
 
     def screenshot(self) -> np.ndarray:
         shot = self.folder / "screen.png"
