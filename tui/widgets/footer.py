@@ -12,6 +12,7 @@ from __future__ import annotations
 from typing import Hashable, Iterable, Sequence
 
 from textual.events import Resize
+from textual.screen import Screen
 from textual.widget import Widget
 from textual.widgets import Footer
 
@@ -34,6 +35,7 @@ class FittedFooter(Footer):
         self._rank = {action: rank for rank, action in enumerate(kept_longest)}
         self._laid_out_for = 0  # the width the keys were last laid out and fitted for
         self._composed: Hashable = None  # what the keys were last composed from
+        self._keys_known = False  # the screen has said which bindings apply
 
     def on_resize(self, event: Resize) -> None:
         # Wider, a key dropped may fit again: lay them all out anew, then drop. Only for a
@@ -41,6 +43,11 @@ class FittedFooter(Footer):
         if event.size.width != self._laid_out_for:
             self._laid_out_for = event.size.width
             self.call_after_refresh(self.recompose)
+
+    def bindings_changed(self, screen: Screen) -> None:
+        # (until then Textual's footer composes no keys)
+        self._keys_known = True
+        super().bindings_changed(screen)
 
     async def recompose(self) -> None:
         # Textual's footer recomposes, mounting every key anew, each time the screen says its
@@ -55,7 +62,7 @@ class FittedFooter(Footer):
 
     def _composed_from(self) -> Hashable:
         """What Textual's footer composes its keys from (its ``compose``), and the width."""
-        if not self._bindings_ready or not self.is_attached:
+        if not self._keys_known or not self.is_attached:
             return None
         shown = tuple((binding.key, binding.action, binding.description, binding.group,
                        enabled, tooltip)
