@@ -25,7 +25,7 @@ PRIVATE_NAMES = {
     "_driver", "_compositor", "_styles_cache", "_batch_count", "_display",
     "_sync_available", "_repaint_regions", "_handle_exception", "_parse_extended_key",
     "_gather_commands", "_GATHER_COMMANDS_GROUP", "_on_click", "_suggestion",
-    "_exception", "_return_code", "_notifications",
+    "_exception", "_return_code", "_notifications", "_bindings_ready",
 }
 # What reads the frames of a traceback, whose locals are Textual's own code as it stands
 # (how the app knows an error for a closing palette's).
