@@ -1,11 +1,15 @@
 """Shared fixtures: a private copy of the bundled model, a state folder of the run's own, and no
 terminal size in the environment; and the run's workers (pytest-xdist): two a core, and the
-kernels they load, compiled before they start."""
+kernels they load, compiled once as they start."""
 
 from __future__ import annotations
 
+import fcntl
 import os
 import shutil
+import subprocess
+import sys
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -19,15 +23,43 @@ def pytest_xdist_auto_num_workers(config: pytest.Config) -> int:
     return 2 * len(os.sched_getaffinity(0))
 
 
-def pytest_xdist_setupnodes(config: pytest.Config, specs: list) -> None:
-    """Before the workers start: a frame's kernels, compiled (or loaded) here once. Every
-    worker draws, and on a cold cache (a fresh clone) each would compile them at the same
-    time; they load them from the cache instead."""
-    from biceps.engine.coldstart import prepare_kernels
-    from biceps.engine.settings import SHADINGS
+# A frame's kernels, compiled (or loaded from the cache) by a child of the run's.
+PREPARE_KERNELS = """
+from biceps.engine.coldstart import prepare_kernels
+from biceps.engine.settings import SHADINGS
+for shading in SHADINGS:
+    prepare_kernels(shading)
+"""
+KERNELS_LOCK = "BICEPS_TESTS_KERNELS_LOCK"  # the file the workers wait on, held by the child
+_preparing: list[subprocess.Popen] = []
 
-    for shading in SHADINGS:
-        prepare_kernels(shading)
+
+def pytest_xdist_setupnodes(config: pytest.Config, specs: list) -> None:
+    """As the workers start: a frame's kernels compiled once, by a child, while they import
+    and collect. Every worker draws, and on a cold cache (a fresh clone) each would compile
+    them at the same time; each waits for the child before its first test instead
+    (:func:`_kernels_prepared`), and loads them from the cache."""
+    lock = tempfile.NamedTemporaryFile(prefix="biceps-kernels-", delete=False)
+    with lock:
+        # Locked until the child ends: the lock is on the open file, which it inherits.
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        _preparing.append(subprocess.Popen([sys.executable, "-c", PREPARE_KERNELS],
+                                           pass_fds=(lock.fileno(),)))
+    os.environ[KERNELS_LOCK] = lock.name  # the workers, started next, inherit it
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    for child in _preparing:
+        child.wait()
+        os.unlink(os.environ.pop(KERNELS_LOCK))
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _kernels_prepared() -> None:
+    lock = os.environ.get(KERNELS_LOCK)
+    if lock is not None:  # on a worker of a run in parallel
+        with open(lock) as prepared:
+            fcntl.flock(prepared, fcntl.LOCK_SH)  # once the child preparing them has ended
 
 
 @pytest.fixture(autouse=True, scope="session")
