@@ -33,16 +33,14 @@ class FittedFooter(Footer):
     def __init__(self, kept_longest: Sequence[str], *, id: str | None = None) -> None:
         super().__init__(id=id, compact=True)
         self._rank = {action: rank for rank, action in enumerate(kept_longest)}
-        self._laid_out_for = 0  # the width the keys were last laid out and fitted for
-        self._composed: Hashable = None  # what the keys were last composed from
+        self._composed: Hashable = None  # the width and keys they were last laid out for
         self._keys_known = False  # the screen has said which bindings apply
 
     def on_resize(self, event: Resize) -> None:
-        # Wider, a key dropped may fit again: lay them all out anew, then drop. Only for a
-        # new width: Textual sends Resize for a new virtual size too, which each drop makes.
-        if event.size.width != self._laid_out_for:
-            self._laid_out_for = event.size.width
-            self.call_after_refresh(self.recompose)
+        # Wider, a key dropped may fit again: lay them all out anew, then drop. (Textual
+        # sends Resize for a new virtual size too, which each drop makes: the width is the
+        # same then, and recompose does nothing.)
+        self.call_after_refresh(self.recompose)
 
     def bindings_changed(self, screen: Screen) -> None:
         # (until then Textual's footer composes no keys)
