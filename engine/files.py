@@ -78,9 +78,11 @@ def check_name(path: Path) -> None:
     longer than its file system allows (most allow 255 bytes), or the whole path is longer
     than the system takes one (4,095 bytes on Linux): every later step would fail on it with
     ENAMETOOLONG."""
+    folder = "."  # the folder holding ``part``, extended part by part, not rebuilt for each
     for depth, part in enumerate(path.parts):
         length = len(os.fsencode(part))
-        longest = _longest_name(Path(*path.parts[:depth]) if depth else Path("."))
+        longest = _longest_name(folder)
+        folder = os.path.join(folder, part) if depth else part
         if length > longest:
             what = "the name" if depth == len(path.parts) - 1 else \
                 f"the folder name {printable(_shortened(part))}"
@@ -92,7 +94,7 @@ def check_name(path: Path) -> None:
                         f"most {longest:,}")
 
 
-def _longest_name(folder: Path) -> int:
+def _longest_name(folder: str) -> int:
     try:
         return os.pathconf(folder, "PC_NAME_MAX")
     except (OSError, ValueError):  # no such folder (yet), or no such limit
