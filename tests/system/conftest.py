@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from installs import fresh_venv
 from once import once_a_run
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -34,3 +35,19 @@ def wheel(tmp_path_factory) -> Path:
 
     (built_wheel,) = once_a_run(tmp_path_factory, "wheel", build).glob("biceps-*.whl")
     return built_wheel
+
+
+@pytest.fixture(scope="session")
+def installed(tmp_path_factory, wheel) -> Path:
+    """The bin folder of a fresh virtual environment holding the wheel, once a run. Its first
+    command, a snapshot, compiles the kernels into the installed package's cache, as a
+    user's first would: its other runs, on any worker, load them from there."""
+
+    def install(where: Path) -> None:
+        bin_folder = fresh_venv(where, wheel)
+        first = subprocess.run([bin_folder / "biceps", "snapshot", "-o", where / "first.png",
+                                "--size", "64x36"], capture_output=True, text=True,
+                               cwd=where, timeout=300)
+        assert first.returncode == 0, first.stderr
+
+    return once_a_run(tmp_path_factory, "installed", install) / "venv" / "bin"

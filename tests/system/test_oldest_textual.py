@@ -1,5 +1,6 @@
 """The app on the oldest Textual the pin allows, installed from the package index in a fresh
-venv: the seam (tui/textual_private.py) takes the private path there, and the app runs."""
+venv beside the wheel's: the seam (tui/textual_private.py) takes the private path there, and
+the app runs."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ import pytest
 from packaging.requirements import Requirement
 
 from biceps.tui import textual_private
-from installs import shared_venv
+from installs import shared_venv, site_folder
 from pty_app import converse
 
 
@@ -27,9 +28,12 @@ OLDEST = oldest_allowed("textual")
 
 
 @pytest.fixture(scope="module")
-def oldest(tmp_path_factory, wheel) -> Path:
-    """The bin folder of a fresh venv holding the wheel and the oldest Textual allowed."""
-    return shared_venv(tmp_path_factory, "oldest-textual", wheel, f"textual=={OLDEST}")
+def oldest(tmp_path_factory, installed) -> list[Path]:
+    """The command in a fresh venv holding the oldest Textual allowed, beside the wheel's
+    (``installed``): biceps and its compiled kernels come from there."""
+    bin_folder = shared_venv(tmp_path_factory, "oldest-textual", None, f"textual=={OLDEST}",
+                             beside=[site_folder(installed)])
+    return [bin_folder / "python", "-m", "biceps"]
 
 
 def test_the_pin_allows_no_textual_older_than_the_seam_knows():
@@ -37,14 +41,13 @@ def test_the_pin_allows_no_textual_older_than_the_seam_knows():
 
 
 def test_the_app_runs_on_the_oldest_textual_the_pin_allows(private_path, oldest, tmp_path):
-    doctor = subprocess.run([oldest / "biceps", "doctor"], capture_output=True, text=True,
+    doctor = subprocess.run([*oldest, "doctor"], capture_output=True, text=True,
                             cwd=tmp_path, timeout=300)
     assert doctor.returncode == 0, doctor.stderr
     assert f"the private path (Textual {OLDEST}'s internals" in doctor.stdout
     # The picture (drawn through the private path's strips), help opened and closed, the
-    # model contracted, then quit without saving it. A fresh install compiles every kernel
-    # before its first picture: the time limit is test_first_run's.
-    run = converse([str(oldest / "biceps")], cwd=tmp_path, script=[
+    # model contracted, then quit without saving it.
+    run = converse([str(part) for part in oldest], cwd=tmp_path, script=[
         ("▀".encode(), b"?"),
         (b"Turn, move and scale", b"\x1b"),
         (b"", b"cc"),

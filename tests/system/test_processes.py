@@ -17,7 +17,6 @@ from PIL import Image
 import biceps.engine
 import biceps.terminal
 from biceps.engine.config import DEFAULT_CONFIG
-from installs import shared_venv
 from pty_app import first_picture
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -159,12 +158,6 @@ def test_a_real_process_prints_no_traceback(name):
     assert process.returncode == 2
     assert process.stderr.count("\n") == 1
     assert "Traceback" not in process.stderr
-
-
-@pytest.fixture(scope="module")
-def installed(tmp_path_factory, wheel) -> Path:
-    """The bin folder of a fresh virtual environment holding the wheel."""
-    return shared_venv(tmp_path_factory, "installed", wheel)
 
 
 def test_a_wheel_installs_one_biceps_package_and_the_bundled_models(installed):
