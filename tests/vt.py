@@ -101,6 +101,13 @@ class Screen:
     def text(self, y: int) -> str:
         return "".join(character for character, _ in self.cells[y])
 
+    def picture(self) -> np.ndarray:
+        """The half-block picture in the first rounded box from the top left (the app's
+        viewport): (2 height, width, 3) uint8."""
+        right = self.text(0).index("╮")
+        bottom = next(y for y in range(self.height) if self.text(y).startswith("╰"))
+        return self.pixels(1, 1, right - 1, bottom - 1)
+
     def pixels(self, left: int, top: int, width: int, height: int) -> np.ndarray:
         """The half-block picture in these cells: (2 height, width, 3) uint8."""
         frame = np.zeros((2 * height, width, 3), np.uint8)

@@ -19,12 +19,11 @@ from vt import Screen
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _first_picture(config: Path, *options: str, timeout: float = 120.0,
-                   **variables: str) -> bytes:
-    """What ``biceps app`` writes to a 100x30 terminal until its first picture is out, within
-    ``timeout`` seconds; ``variables`` are added to its environment."""
+def _first_picture(config: Path, *options: str, **variables: str) -> bytes:
+    """What ``biceps app`` writes to a 100x30 terminal until its first picture is out;
+    ``variables`` are added to its environment."""
     command = [sys.executable, "-m", "biceps", "app", str(config), *options]
-    return first_picture(command, cwd=ROOT, timeout=timeout, **variables).output
+    return first_picture(command, cwd=ROOT, **variables).output
 
 
 def _colour_codes(output: bytes) -> list[str]:
@@ -55,22 +54,12 @@ def test_a_truecolor_terminal_gets_the_picture_in_rgb(config_path):
     assert any(re.search(r"(^|;)38;2;\d+;\d+;\d+;48;2;", code) for code in codes)
 
 
-@pytest.mark.parametrize("cache", ["warm", "cold"])
-def test_the_picture_on_the_terminal_is_the_frame_exactly(config_path, tmp_path, cache):
-    # Cold: an empty numba cache, as on a first run, where a child process compiles the
-    # kernels for the first frame (engine/coldstart.py).
-    # Compiling every kernel can take minutes on a loaded machine: the limit is then
-    # test_first_run's.
-    variables = {"NUMBA_CACHE_DIR": str(tmp_path / "cache")} if cache == "cold" else {}
-    output = _first_picture(config_path, "--colors", "truecolor",
-                            timeout=300.0 if cache == "cold" else 120.0, **variables).decode()
-    screen = Screen(100, 30).feed(output)
-    # The picture is inside the first rounded box from the top left.
-    right = screen.text(0).index("╮")
-    bottom = next(y for y in range(30) if screen.text(y).startswith("╰"))
-    width, height = right - 1, bottom - 1
-    shown = screen.pixels(1, 1, width, height)
-    frame = SceneRenderer().render(Scene.of(load_config(config_path)), width, 2 * height)
+def test_the_picture_on_the_terminal_is_the_frame_exactly(config_path):
+    # (On a cold cache too: tests/system/test_first_run.py.)
+    output = _first_picture(config_path, "--colors", "truecolor").decode()
+    shown = Screen(100, 30).feed(output).picture()
+    frame = SceneRenderer().render(Scene.of(load_config(config_path)), shown.shape[1],
+                                   shown.shape[0])
     np.testing.assert_array_equal(shown, frame)
 
 
@@ -85,11 +74,9 @@ def test_the_picture_and_its_caption_on_the_terminal_follow_the_keys(config_path
                          keys=b"\x1b[C" * 3, expected=caption.encode()).decode()
     screen = Screen(100, 30).feed(output)
     assert screen.text(0).startswith(f"╭─ {caption} ")
-    right = screen.text(0).index("╮")
-    bottom = next(y for y in range(30) if screen.text(y).startswith("╰"))
-    width, height = right - 1, bottom - 1
-    frame = SceneRenderer().render(scene, width, 2 * height)
-    np.testing.assert_array_equal(screen.pixels(1, 1, width, height), frame)
+    shown = screen.picture()
+    frame = SceneRenderer().render(scene, shown.shape[1], shown.shape[0])
+    np.testing.assert_array_equal(shown, frame)
 
 
 def test_after_its_frame_the_app_asks_where_the_cursor_is(private_path, config_path):

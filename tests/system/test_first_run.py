@@ -1,5 +1,5 @@
 """A first run (an empty numba cache) says so from the app's first screen, with its
-progress, until the first picture; the keys work meanwhile."""
+progress, until the first picture; the keys work meanwhile, and the picture is the frame."""
 
 from __future__ import annotations
 
@@ -9,9 +9,14 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from biceps.engine import coldstart
+from biceps.engine.config import DEFAULT_CONFIG, load_config
+from biceps.engine.scene import Scene
+from biceps.engine.scene_renderer import SceneRenderer
+from biceps.tui.changes import FINE_STEP, length_changed
 from pty_app import UPPER_HALF, _terminal
 from vt import Screen
 
@@ -30,6 +35,8 @@ def _read_until(master: int, output: bytearray, condition, timeout: float = 300)
 
 @pytest.mark.skipif(coldstart._cores() < 2, reason="a first run compiles aside on two cores")
 def test_a_first_run_says_so_on_the_first_screen_and_the_keys_work_meanwhile(tmp_path):
+    # The children compile the first frame's kernels (engine/coldstart.py), and the app
+    # loads them from the cache.
     command = [sys.executable, "-m", "biceps", "--graphics", "halfblocks", "--colors",
                "truecolor"]  # (nothing to ask the terminal)
     with _terminal(command, ROOT, (100, 30), {"NUMBA_CACHE_DIR": str(tmp_path)}) as (
@@ -44,9 +51,36 @@ def test_a_first_run_says_so_on_the_first_screen_and_the_keys_work_meanwhile(tmp
         assert UPPER_HALF not in output
         _read_until(master, output, lambda: b"1 s" in output[output.index(MESSAGE):])
         _read_until(master, output, lambda: UPPER_HALF in output)
-        time.sleep(1)  # (the rest of the frame)
-        while select.select([master], [], [], 0.2)[0]:
+        # Then the frame of the model stretched, exactly, as on a warm start
+        # (tests/system/test_app_terminal.py): the first may be of the model before.
+        scene = Scene.of(load_config(DEFAULT_CONFIG))
+        screen = _read_until_shown(master, output,
+                                   scene.with_arm(length_changed(scene.arm, FINE_STEP)[0]))
+    assert "Preparing" not in "\n".join(screen.text(y) for y in range(30))
+
+
+def _read_until_shown(master: int, output: bytearray, scene: Scene,
+                      timeout: float = 300) -> Screen:
+    """Read until the app's picture is ``scene``'s frame, checked whenever the output pauses
+    (a frame is written whole), and return the screen."""
+    deadline, checked = time.monotonic() + timeout, 0
+    while True:
+        if select.select([master], [], [], 0.2)[0]:
             output += os.read(master, 1 << 16)
-    screen = Screen(100, 30).feed(output.decode(errors="replace"))
-    shown = "\n".join(screen.text(y) for y in range(30))
-    assert "Preparing" not in shown and "▀" in shown
+        elif len(output) > checked:
+            checked = len(output)
+            screen = Screen(100, 30).feed(output.decode(errors="replace"))
+            if _shows(screen, scene):
+                return screen
+        elif time.monotonic() > deadline:
+            pytest.fail(f"the picture never was the frame:\n{bytes(output[-2000:])!r}")
+
+
+def _shows(screen: Screen, scene: Scene) -> bool:
+    """Whether the app's picture on ``screen`` is ``scene``'s frame, exactly."""
+    try:
+        picture = screen.picture()
+    except AssertionError:  # not all of it a picture yet (the message was there)
+        return False
+    frame = SceneRenderer().render(scene, picture.shape[1], picture.shape[0])
+    return np.array_equal(picture, frame)
