@@ -9,11 +9,13 @@ from typing import AsyncIterator
 import pytest
 from textual.notifications import Notification, Notify
 from textual.pilot import Pilot
+from textual.screen import ModalScreen
 
 from biceps.engine.config import Config
 from biceps.tui.app import BicepsApp
 from biceps.tui.screens.prompt import Prompt
 from biceps.tui.widgets.viewport import Viewport
+from waiting import until
 
 
 def screen_rows(app: BicepsApp) -> list[str]:
@@ -47,14 +49,17 @@ class Session:
         await self.settle()
 
     async def settle(self) -> None:
-        """Wait until a dialog has checked what was typed in it, the picture shows the
-        latest scene and every export is written."""
+        """Wait until a dialog has checked what was typed in it, what the dialogs do (a save,
+        say) is done or asks a question, the picture shows the latest scene and every export
+        is written."""
         app, pilot = self.app, self.pilot
         await pilot.pause()
         for _ in range(1000):
             if not (isinstance(app.screen, Prompt) and app.screen.checking):
                 break
             await pilot.pause(0.01)
+        await until(pilot, lambda: isinstance(app.screen, ModalScreen) or not any(
+            worker.group == "dialogs" and not worker.is_finished for worker in app.workers))
         exports = [worker for worker in app.workers if worker.group == "export"]
         if exports:  # an empty list would mean every worker, the render loop among them
             await app.workers.wait_for_complete(exports)

@@ -92,6 +92,7 @@ async def test_saving_a_bundled_model_says_why_it_asks_where(biceps, tmp_path, m
     monkeypatch.chdir(tmp_path)
     async with biceps(on=load_config(BUNDLED / "biceps.toml")) as session:
         await session.pilot.press("c", "ctrl+s")
+        await session.settle()
         prompt = session.app.screen
         assert isinstance(prompt, Prompt)
         note = prompt.query_one(".dialog-note", Label)

@@ -33,6 +33,7 @@ async def test_saved_edits_come_back_when_the_file_is_read_again(biceps, config_
     async with biceps() as session:
         session.app.screen.query_one(NodeTable).move_cursor(row=3)
         await session.pilot.press("C", "tab", "n", "right", "l", "g", "ctrl+s")
+        await session.settle()
         assert not session.app.unsaved
         scene = session.app.scene
     saved = load_config(config_path)
@@ -97,6 +98,7 @@ async def test_save_as_over_another_file_asks_first(biceps, tmp_path):
         assert session.app.screen.query_one(Input).value == str(other)
         await _answer(session, str(other))
         await session.pilot.press("y")
+        await session.settle()
         assert load_config(other).arm.length == 32.9
 
 
@@ -263,6 +265,7 @@ async def test_keys_that_move_the_model_do_not_answer_the_quit_question(biceps, 
 async def test_quit_can_save_first(biceps, config_path):
     async with biceps() as session:
         await session.pilot.press("c", "q", "s")
+        await until(session.pilot, lambda: session.app.return_code is not None)
         assert session.app.return_code == 0
     assert load_config(config_path).arm.length == 32.9
 
@@ -280,6 +283,7 @@ async def test_saving_after_contracting_changes_the_pose_line_alone(biceps, conf
     before = config_path.read_text().splitlines()
     async with biceps() as session:
         await session.pilot.press("C", "C", "ctrl+s")
+        await session.settle()
         assert not session.app.unsaved
     after = config_path.read_text().splitlines()
     changed = [line for line in difflib.unified_diff(before, after, lineterm="", n=0)
@@ -299,6 +303,7 @@ async def test_turning_and_shading_are_saved_but_quitting_does_not_ask_about_the
         await session.pilot.press("right", "g", "l", "plus")
         assert not session.app.unsaved
         await session.pilot.press("ctrl+s")
+        await session.settle()
         await session.pilot.press("left", "q")
         assert session.app.return_code == 0  # quit at once, no question
     saved = load_config(config_path)
@@ -309,6 +314,7 @@ async def test_a_drag_saves_a_round_angle(biceps, config_path):
     async with biceps() as session:
         session.app.action_turn(13.783785, 0.0, 0.0)
         await session.pilot.press("ctrl+s")
+        await session.settle()
     assert "\nyaw = -11.2 " in config_path.read_text()
 
 

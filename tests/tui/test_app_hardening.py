@@ -447,7 +447,9 @@ async def test_a_file_changed_on_disk_is_overwritten_only_when_asked(biceps, con
         await session.settle()
         assert config_path.read_text() == theirs
         assert session.app.unsaved
-        await session.pilot.press("ctrl+s", "o")
+        await session.pilot.press("ctrl+s")
+        await session.settle()
+        await session.pilot.press("o")
         await session.settle()
         assert not session.app.unsaved
     assert load_config(config_path).arm.length == 32.9
@@ -484,7 +486,7 @@ async def test_an_unexpected_error_offers_to_save_the_model_it_left(private_path
         assert isinstance(rescue.screen, Choice)
         assert "Broken: a fault in the app" in str(rescue.screen.query_one("Label").render())
         await pilot.press("s")
-        await pilot.pause()
+        await until(pilot, lambda: rescue.return_code is not None)
     assert rescue.return_code == 0
     assert load_config(config_path).arm.length == pytest.approx(32.8)  # both c, as it was
 

@@ -82,14 +82,18 @@ async def test_the_view_is_not_undone(biceps):
 async def test_revert_goes_back_to_the_saved_file_and_undo_comes_back(biceps, config_path):
     async with biceps() as session:
         app = session.app
-        await session.pilot.press("C", "ctrl+s", "C", "tab", "n")
+        await session.pilot.press("C", "ctrl+s")
+        await session.settle()
+        await session.pilot.press("C", "tab", "n")
         assert app.unsaved
         await session.pilot.press("ctrl+r")
         assert not app.unsaved
         assert (app.scene.arm.length, app.scene.arm.muscle.node_count) == (32.0, 15)
         await session.pilot.press("ctrl+z")
         assert (app.scene.arm.length, app.scene.arm.muscle.node_count) == (31.0, 16)
-        await session.pilot.press("ctrl+s", "ctrl+r")
+        await session.pilot.press("ctrl+s")
+        await session.settle()
+        await session.pilot.press("ctrl+r")
         assert "Nothing to revert" in session.notes[-1].message
     assert load_config(config_path).arm.muscle.node_count == 16
 
@@ -98,7 +102,9 @@ async def test_opening_another_file_starts_a_new_history(biceps):
     from biceps.engine.config import BUNDLED
 
     async with biceps() as session:
-        await session.pilot.press("c", "ctrl+s", "ctrl+o")
+        await session.pilot.press("c", "ctrl+s")
+        await session.settle()
+        await session.pilot.press("ctrl+o")
         for box, value in zip(session.app.screen.query("Input"), [str(BUNDLED / "toy.toml")]):
             box.value = value
         await session.pilot.press("enter", "ctrl+z")
