@@ -145,3 +145,23 @@ async def test_the_footer_is_built_again_only_when_its_keys_change(biceps, monke
         await _footer_settled(session)
         assert len(built) == 1
         assert "edit_node" in {key.action for key in _footer_keys(session)}
+
+
+async def test_a_second_fit_of_the_same_keys_changes_nothing_and_the_footer_rests(
+        biceps, monkeypatch):
+    # Two compositions in a row (the width changing twice before a refresh) left two fits
+    # pending for the last one's keys. The second took the keys the first had dropped (they
+    # have no region) for keys not laid out yet, and waited for them at every refresh: a
+    # core kept busy for as long as the keys stayed the same.
+    async with biceps((60, 24)) as session:
+        await _footer_settled(session)
+        footer = session.app.screen.query_one(FittedFooter)
+        shown = _footer_keys(session)
+        fits = []
+        fit = FittedFooter._fit
+        monkeypatch.setattr(FittedFooter, "_fit",
+                            lambda self, *tries: (fits.append(tries), fit(self, *tries))[1])
+        footer._fit()
+        await _footer_settled(session)
+        assert _footer_keys(session) == shown
+        assert fits == [()]  # that one, and none after it

@@ -17,6 +17,10 @@ from textual.widget import Widget
 from textual.widgets import Footer
 
 
+FIT_TRIES = 3
+"""Refreshes a fit waits for the keys to be laid out before it leaves them as they are."""
+
+
 class FittedFooter(Footer):
     """A compact footer that drops the keys of least worth until the rest fit its width.
 
@@ -34,12 +38,13 @@ class FittedFooter(Footer):
         super().__init__(id=id, compact=True)
         self._rank = {action: rank for rank, action in enumerate(kept_longest)}
         self._composed: Hashable = None  # the width and keys they were last laid out for
+        self._fitted: Hashable = None  # the same, once the keys of least worth are dropped
         self._keys_known = False  # the screen has said which bindings apply
 
     def on_resize(self, event: Resize) -> None:
         # Wider, a key dropped may fit again: lay them all out anew, then drop. (Textual
         # sends Resize for a new virtual size too, which each drop makes: the width is the
-        # same then, and recompose does nothing.)
+        # same then, and recompose does nothing, or fits the keys if they were not shown.)
         self.call_after_refresh(self.recompose)
 
     def bindings_changed(self, screen: Screen) -> None:
@@ -52,11 +57,11 @@ class FittedFooter(Footer):
         # bindings changed: whenever the focus moves, four times as the app starts, mostly to
         # the same keys. So only when the keys or the width differ from the last time.
         composed_from = self._composed_from()
-        if composed_from == self._composed:
-            return
-        self._composed = composed_from
-        await super().recompose()
-        self.call_after_refresh(self._fit)
+        if composed_from != self._composed:
+            self._composed = composed_from
+            await super().recompose()
+        if self._fitted != self._composed:
+            self.call_after_refresh(self._fit)
 
     def _composed_from(self) -> Hashable:
         """What Textual's footer composes its keys from (its ``compose``), and the width."""
@@ -68,13 +73,19 @@ class FittedFooter(Footer):
                       if binding.show or binding.key == self.app.COMMAND_PALETTE_BINDING)
         return self.size.width, shown
 
-    def _fit(self) -> None:
+    def _fit(self, tries: int = FIT_TRIES) -> None:
         """Keep the keys of most worth that fit beside the docked ones (the palette's key),
-        each as wide as it was laid out, all of them shown."""
+        each as wide as it was laid out, all of them shown: once for each composition (the
+        keys it drops have no region, and a second pass would take them for keys not laid
+        out yet)."""
+        if self._fitted == self._composed:
+            return
         units = self._units()
         if any(not widget.region for unit in units for widget in unit):
-            self.call_after_refresh(self._fit)  # not laid out yet
-            return
+            if tries:  # not laid out yet
+                self.call_after_refresh(self._fit, tries - 1)
+            return  # not shown (a terminal too small, another screen in front): on a resize
+        self._fitted = self._composed
         room = self.size.width - sum(_width(widget) for widget in self._docked())
         for unit in sorted(units, key=self._worth, reverse=True):
             width = sum(_width(widget) for widget in unit)
