@@ -155,15 +155,16 @@ async def _drive(folder, bursts) -> int:
 async def _taken(app: BicepsApp) -> None:
     """Wait until the app and every widget have handled what they were sent: quicker than
     the pilot's pause, which waits for the process to be idle (the picture's thread too).
-    However long a loaded machine takes: given up after five seconds, a burst's last edits
-    were still queued when the model was checked against the numbers shown."""
-    deadline = time.monotonic() + 600
+    However long a loaded machine takes (given up after five seconds, a burst's last edits
+    were still queued when the model was checked against the numbers shown), but not for
+    ever: an app that never stops sending itself messages is a fault (the footer did)."""
+    deadline = time.monotonic() + 120
     while time.monotonic() < deadline:
         nodes = [app, *app.screen_stack, *app.screen.walk_children()]
         if not any(node._message_queue.qsize() for node in nodes):
             return
         await asyncio.sleep(0.001)
-    raise AssertionError("the app has not taken its input in ten minutes")
+    raise AssertionError("the app has not taken its input in two minutes")
 
 
 async def _check_model(app: BicepsApp) -> None:
