@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import subprocess
 from importlib.metadata import requires
-from pathlib import Path
 
 import pytest
 from packaging.requirements import Requirement
@@ -28,12 +27,12 @@ OLDEST = oldest_allowed("textual")
 
 
 @pytest.fixture(scope="module")
-def oldest(tmp_path_factory, installed) -> list[Path]:
+def oldest(tmp_path_factory, installed) -> list[str]:
     """The command in a fresh venv holding the oldest Textual allowed, beside the wheel's
     (``installed``): biceps and its compiled kernels come from there."""
     bin_folder = shared_venv(tmp_path_factory, "oldest-textual", None, f"textual=={OLDEST}",
                              beside=[site_folder(installed)])
-    return [bin_folder / "python", "-m", "biceps"]
+    return [str(bin_folder / "python"), "-m", "biceps"]
 
 
 def test_the_pin_allows_no_textual_older_than_the_seam_knows():
@@ -47,7 +46,7 @@ def test_the_app_runs_on_the_oldest_textual_the_pin_allows(private_path, oldest,
     assert f"the private path (Textual {OLDEST}'s internals" in doctor.stdout
     # The picture (drawn through the private path's strips), help opened and closed, the
     # model contracted, then quit without saving it.
-    run = converse([str(part) for part in oldest], cwd=tmp_path, script=[
+    run = converse(oldest, cwd=tmp_path, script=[
         ("▀".encode(), b"?"),
         (b"Turn, move and scale", b"\x1b"),
         (b"", b"cc"),
