@@ -38,7 +38,7 @@ class FittedFooter(Footer):
         super().__init__(id=id, compact=True)
         self._rank = {action: rank for rank, action in enumerate(kept_longest)}
         self._composed: Hashable = None  # the width and keys they were last laid out for
-        self._fitted: Hashable = None  # the same, once the keys of least worth are dropped
+        self._fitted = False  # the keys composed last have had those of least worth dropped
         self._keys_known = False  # the screen has said which bindings apply
 
     def on_resize(self, event: Resize) -> None:
@@ -58,9 +58,9 @@ class FittedFooter(Footer):
         # the same keys. So only when the keys or the width differ from the last time.
         composed_from = self._composed_from()
         if composed_from != self._composed:
-            self._composed = composed_from
+            self._composed, self._fitted = composed_from, False
             await super().recompose()
-        if self._fitted != self._composed:
+        if not self._fitted:
             self.call_after_refresh(self._fit)
 
     def _composed_from(self) -> Hashable:
@@ -78,14 +78,14 @@ class FittedFooter(Footer):
         each as wide as it was laid out, all of them shown: once for each composition (the
         keys it drops have no region, and a second pass would take them for keys not laid
         out yet)."""
-        if self._fitted == self._composed:
+        if self._fitted:
             return
         units = self._units()
         if any(not widget.region for unit in units for widget in unit):
             if tries:  # not laid out yet
                 self.call_after_refresh(self._fit, tries - 1)
             return  # not shown (a terminal too small, another screen in front): on a resize
-        self._fitted = self._composed
+        self._fitted = True
         room = self.size.width - sum(_width(widget) for widget in self._docked())
         for unit in sorted(units, key=self._worth, reverse=True):
             width = sum(_width(widget) for widget in unit)
