@@ -8,6 +8,7 @@ import select
 import sys
 import time
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 import pytest
@@ -54,26 +55,29 @@ def test_a_first_run_says_so_on_the_first_screen_and_the_keys_work_meanwhile(tmp
         # Then the frame of the model stretched, exactly, as on a warm start
         # (tests/system/test_app_terminal.py): the first may be of the model before.
         scene = Scene.of(load_config(DEFAULT_CONFIG))
-        screen = _read_until_shown(master, output,
-                                   scene.with_arm(length_changed(scene.arm, FINE_STEP)[0]))
+        stretched = scene.with_arm(length_changed(scene.arm, FINE_STEP)[0])
+        _read_until(master, output, _frame_shown(output, stretched))
+    screen = _screen(output)
     assert "Preparing" not in "\n".join(screen.text(y) for y in range(30))
 
 
-def _read_until_shown(master: int, output: bytearray, scene: Scene,
-                      timeout: float = 300) -> Screen:
-    """Read until the app's picture is ``scene``'s frame, checked whenever the output pauses
-    (a frame is written whole), and return the screen."""
-    deadline, checked = time.monotonic() + timeout, 0
-    while True:
-        if select.select([master], [], [], 0.2)[0]:
-            output += os.read(master, 1 << 16)
-        elif len(output) > checked:
-            checked = len(output)
-            screen = Screen(100, 30).feed(output.decode(errors="replace"))
-            if _shows(screen, scene):
-                return screen
-        elif time.monotonic() > deadline:
-            pytest.fail(f"the picture never was the frame:\n{bytes(output[-2000:])!r}")
+def _frame_shown(output: bytearray, scene: Scene) -> Callable[[], bool]:
+    """A condition for :func:`_read_until`: whether the app's picture is ``scene``'s frame,
+    looked at again only once more output has come."""
+    looked_at = 0
+
+    def shown() -> bool:
+        nonlocal looked_at
+        if len(output) == looked_at:
+            return False
+        looked_at = len(output)
+        return _shows(_screen(output), scene)
+
+    return shown
+
+
+def _screen(output: bytearray) -> Screen:
+    return Screen(100, 30).feed(output.decode(errors="replace"))
 
 
 def _shows(screen: Screen, scene: Scene) -> bool:
