@@ -54,10 +54,7 @@ class Session:
         is written."""
         app, pilot = self.app, self.pilot
         await pilot.pause()
-        for _ in range(1000):
-            if not (isinstance(app.screen, Prompt) and app.screen.checking):
-                break
-            await pilot.pause(0.01)
+        await until(pilot, lambda: not (isinstance(app.screen, Prompt) and app.screen.checking))
         await until(pilot, lambda: isinstance(app.screen, ModalScreen) or not any(
             worker.group == "dialogs" and not worker.is_finished for worker in app.workers))
         exports = [worker for worker in app.workers if worker.group == "export"]
