@@ -11,13 +11,15 @@ from textual.pilot import Pilot
 T = TypeVar("T")
 
 
-async def until(pilot: Pilot, condition: Callable[[], object]) -> None:
-    """Let the app run until ``condition()`` holds (ten seconds at most)."""
+async def until(pilot: Pilot, condition: Callable[[], object],
+                what: str = "what the test waited for") -> None:
+    """Let the app run until ``condition()`` holds (ten seconds at most); AssertionError
+    naming ``what`` if it never did."""
     for _ in range(1000):
         if condition():
             return
         await pilot.pause(0.01)
-    raise AssertionError("never happened")
+    raise AssertionError(f"never happened: {what}")
 
 
 def came(condition: Callable[[], T | None], what: str, timeout: float = 120.0,

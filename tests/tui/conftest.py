@@ -41,10 +41,8 @@ class Session:
 
         await self.pilot.press("ctrl+p", *text)
         commands = self.app.screen.query_one(CommandList)
-        for _ in range(1000):  # the palette searches in the background
-            if commands.option_count:
-                break
-            await self.pilot.pause(0.01)
+        # The palette searches in the background.
+        await until(self.pilot, lambda: commands.option_count, f"a command for {text!r}")
         await self.pilot.press("enter")
         await self.settle()
 
@@ -61,12 +59,7 @@ class Session:
         if exports:  # an empty list would mean every worker, the render loop among them
             await app.workers.wait_for_complete(exports)
         viewport = app.screen_stack[0].query_one(Viewport)
-        for _ in range(1000):
-            if viewport.up_to_date:
-                break
-            await pilot.pause(0.01)
-        else:
-            raise AssertionError("the picture never caught up with the scene")
+        await until(pilot, lambda: viewport.up_to_date, "the picture caught up with the scene")
         await pilot.pause()
 
 

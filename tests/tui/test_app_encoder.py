@@ -18,6 +18,7 @@ from biceps.engine.scene import Scene
 from biceps.tui.encoder import Picture, PictureEncoder
 from biceps.tui.pacing import Pacer
 from biceps.tui.widgets.viewport import Viewport
+from waiting import until
 
 
 class Corners:
@@ -71,10 +72,7 @@ class OneViewport(App[None]):
 
 async def _shown(app: OneViewport, pilot) -> Viewport:
     viewport = app.query_one(Viewport)
-    for _ in range(1000):
-        if viewport.up_to_date:
-            break
-        await pilot.pause(0.01)
+    await until(pilot, lambda: viewport.up_to_date, "the picture caught up with the scene")
     await pilot.pause()
     return viewport
 

@@ -37,6 +37,8 @@ async def settled(session):
         await session.pilot.pause()
         if not app._effort_busy:  # an answer for an older pose asks again for the newest
             break
+    else:
+        raise AssertionError("the effort never caught up with the pose")
     await session.settle()
 
 

@@ -12,6 +12,7 @@ from biceps.configs import FOLDER
 from biceps.engine.config import load_config
 from biceps.tui.app import BicepsApp
 from test_app_snapshots import _picture_drawn
+from waiting import until
 
 
 def test_the_plot_panel_after_a_contraction(snap_compare, config):
@@ -29,10 +30,8 @@ def test_the_torque_panel_beside_the_others_holding_5_kg(snap_compare, tmp_path)
     async def hold_with_plots(pilot: Pilot) -> None:
         await pilot.press("p", *"}" * 5)
         app = pilot.app
-        for _ in range(1000):
-            if app.effort is not None and not app._effort_busy and app.scene.mass == 5.0:
-                break
-            await pilot.pause(0.01)
+        await until(pilot, lambda: (app.effort is not None and not app._effort_busy
+                                    and app.scene.mass == 5.0), "the effort of holding 5 kg")
         app.clear_notifications()  # the five 'Holding N kg', each over the picture
         await _picture_drawn(pilot)
 

@@ -1,6 +1,6 @@
 """What the screens look like, compared with the accepted SVG snapshots.
 
-Update them with ``pytest tests/test_app_snapshots.py --snapshot-update`` and look at the
+Update them with ``pytest tests/tui/test_app_snapshots.py --snapshot-update`` and look at the
 result (``tests/tui/__snapshots__``) before accepting it.
 """
 
@@ -11,16 +11,13 @@ from biceps.configs import FOLDER
 from biceps.engine.config import load_config
 from biceps.tui.app import BicepsApp
 from biceps.tui.widgets.viewport import Viewport
+from waiting import until
 
 
 async def _picture_drawn(pilot: Pilot) -> None:
     await pilot.pause()  # the main screen may not be composed yet
     viewport = pilot.app.screen_stack[0].query_one(Viewport)
-    for _ in range(1000):
-        if viewport.up_to_date:
-            return
-        await pilot.pause(0.01)
-    raise AssertionError("the picture never caught up with the scene")
+    await until(pilot, lambda: viewport.up_to_date, "the picture caught up with the scene")
 
 
 def test_main_screen(snap_compare, config):
