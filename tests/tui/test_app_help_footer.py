@@ -1,6 +1,8 @@
 """The help and the footer fit the terminal, 80 columns too (every key in the help:
 test_app_screens.py)."""
 
+import gc
+import weakref
 from importlib.resources import files
 
 import pytest
@@ -165,3 +167,19 @@ async def test_a_second_fit_of_the_same_keys_changes_nothing_and_the_footer_rest
         await _footer_settled(session)
         assert _footer_keys(session) == shown
         assert fits == [()]  # that one, and none after it
+
+
+async def test_the_keys_of_a_footer_built_again_are_let_go(biceps):
+    # Each key watches the footer's compact (Textual's data_bind), and Textual's footer kept
+    # the watchers of the keys it removed: every resize left all its keys alive.
+    async with biceps((100, 30)) as session:
+        await _footer_settled(session)
+        footer = session.app.screen.query_one(FittedFooter)
+        removed = [weakref.ref(key) for key in footer.query(FooterKey)]
+        for width in (90, 110, 95):
+            await session.pilot.resize_terminal(width, 30)
+            await _footer_settled(session)
+        assert footer.query(FooterKey) and not any(key() in footer.query(FooterKey)
+                                                   for key in removed)
+        gc.collect()
+        assert [key() for key in removed if key() is not None] == []

@@ -60,6 +60,11 @@ class FittedFooter(Footer):
         if composed_from != self._composed:
             self._composed, self._fitted = composed_from, False
             await super().recompose()
+            # Each key watches the footer's compact (Textual's data_bind), and the footer
+            # keeps the watchers of the keys just removed, and so the keys, until compact
+            # changes, which it never does (Textual issue 6666): a resize left every key
+            # alive. Setting it again lets Textual drop the watchers of removed keys.
+            self.mutate_reactive(Footer.compact)
         if not self._fitted:
             self.call_after_refresh(self._fit)
 
