@@ -951,14 +951,18 @@ def _own_process() -> bool:
 def _app_process(asides: Asides | None = None) -> Iterator[AppProcess]:
     """What the app is given in the command's own process (tui/app.py's AppProcess): the
     children ``asides`` compiling its first frame's kernels, one pool of threads for its
-    renderers, shut down after, and the heap frozen once it is up (`_freeze_heap`); in a
-    caller's process (a test's), nothing."""
+    renderers, shut down after, the heap frozen once it is up (`_freeze_heap`), and a
+    cache of Textual's mended to let go of the lines of widgets gone; in a caller's
+    process (a test's), nothing."""
     from biceps.tui.app import AppProcess
 
     if not _own_process():
         yield AppProcess()
         return
     from biceps.engine.raster.bands import band_pool
+    from biceps.tui.textual_private import release_styles_caches
+
+    release_styles_caches()
 
     with band_pool() as pool:
         yield AppProcess(asides, pool, _freeze_heap)

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import os
 from contextlib import contextmanager
+from functools import lru_cache
 from importlib.metadata import version as installed_version
 from typing import Any, Callable, Iterator, Sequence
 
@@ -252,6 +253,44 @@ def colour_system(system: str) -> Iterator[None]:
         yield
     finally:
         textual.constants.COLOR_SYSTEM = previous
+
+
+# A cache of Textual's that keeps what it should let go.
+
+_styles_caches_released = False
+
+
+def release_styles_caches() -> bool:
+    """Have Textual's ``StylesCache.get_inner_outer`` cache by its two colours alone, for
+    the process. Textual caches it for each StylesCache (``lru_cache`` on the method,
+    Textual issue 6665), so its 1,024 entries keep that many StylesCaches, and every line
+    they hold, after their widgets have gone, and every collection of the oldest generation
+    walks them. False on the public path, or where the method is not such a cache (a Textual
+    that has mended it)."""
+    global _styles_caches_released
+    if not ENABLED:
+        return False
+    if _styles_caches_released:
+        return True
+    from textual._styles_cache import StylesCache
+
+    cached = StylesCache.__dict__.get("get_inner_outer")
+    method = getattr(cached, "__wrapped__", None)
+    code = getattr(method, "__code__", None)
+    if not hasattr(cached, "cache_info") or code is None or code.co_varnames[:3] != (
+            "cls", "base_background", "background"):
+        return False
+
+    @lru_cache(maxsize=cached.cache_info().maxsize)
+    def by_colours(base_background: Any, background: Any) -> Any:
+        return method(StylesCache, base_background, background)  # (cls is not read)
+
+    def get_inner_outer(self: StylesCache, base_background: Any, background: Any) -> Any:
+        return by_colours(base_background, background)
+
+    StylesCache.get_inner_outer = get_inner_outer
+    _styles_caches_released = True
+    return True
 
 
 # Lines that carry their terminal text.
