@@ -215,7 +215,7 @@ def update_touches(update: object, area: Region) -> bool:
 class AppHooks(App):
     """An app told what Textual wrote (:meth:`screen_written`) and what error ends it
     (:meth:`ending_on`), which Textual has no public hooks for; a closing palette's faults
-    are let pass (:func:`a_closing_palette_s_fault`)."""
+    are let pass (:func:`a_closing_palette_s_fault`, :func:`palette_clicked_on_a_result_gone`)."""
 
     def screen_written(self, screen: Any, update: object) -> None:
         """Textual has written ``update`` of ``screen`` to the terminal (the private path)."""
@@ -232,6 +232,11 @@ class AppHooks(App):
     def _handle_exception(self, error: Exception) -> None:
         if ENABLED:
             if a_closing_palette_s_fault(error):
+                return
+            palette = palette_clicked_on_a_result_gone(error)
+            if palette is not None:
+                if palette is self.screen:  # its list takes no more clicks: a new one will
+                    palette.dismiss()
                 return
             self.ending_on(error)
         super()._handle_exception(error)
@@ -438,3 +443,24 @@ def a_closing_palette_s_fault(error: BaseException) -> bool:
             return not palette.query(CommandList)
         entry = entry.tb_next
     return False
+
+
+def palette_clicked_on_a_result_gone(error: BaseException) -> Any:
+    """The palette, if ``error`` is Textual's palette list handling a click on a result it
+    no longer has (IndexError in ``OptionList._on_click``): the click was on the list as
+    drawn before its search changed it, and reached it after (seen in a storm of input).
+    Nothing is lost by letting it pass, no result was there to choose; but the list's
+    messages end with the error, so the palette is closed (ctrl+p opens a new one)."""
+    from textual.command import CommandList
+
+    if not isinstance(error, IndexError) or error.__traceback__ is None:
+        return None
+    entry = error.__traceback__
+    while entry.tb_next is not None:  # to where it was raised
+        entry = entry.tb_next
+    frame = entry.tb_frame
+    commands, clicked = frame.f_locals.get("self"), frame.f_locals.get("clicked_option")
+    if (frame.f_code.co_name == "_on_click" and isinstance(commands, CommandList)
+            and isinstance(clicked, int) and clicked >= commands.option_count):
+        return commands.screen
+    return None

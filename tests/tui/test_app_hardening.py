@@ -11,6 +11,7 @@ import time
 from pathlib import Path
 
 import pytest
+from rich.style import Style
 from textual import events
 from textual.command import CommandList
 from textual.content import Content
@@ -176,6 +177,33 @@ async def test_the_palette_s_late_timers_as_it_closes_do_not_end_the_app(private
         await session.pilot.pause()
         await session.pilot.pause()
         assert app.failure is None
+
+
+async def test_a_click_on_a_result_the_palette_has_since_dropped_does_not_end_the_app(
+        private_path, biceps):
+    # Seen in a storm: a click on the palette's results as drawn reached the list after its
+    # search had changed it, on a result no longer there; Textual's handler looked it up
+    # (IndexError) and ended the app. On the private path (tui/textual_private.py) the
+    # palette closes instead.
+    async with biceps() as session:
+        palette = await _palette(session)
+        commands = palette.query_one(CommandList)
+        await until(session.pilot, lambda: commands.option_count)
+        x, y = commands.region.offset
+        click = events.Click(commands, 1, 1, 0, 0, 1, False, False, False,
+                             screen_x=x + 1, screen_y=y + 1)
+        click.style = Style(meta={"option": commands.option_count + 5})
+        commands.post_message(click)
+        # (not the pilot's pause: it waits for every widget in front, the list among them)
+        for _ in range(500):
+            if session.app.screen is not palette:
+                break
+            await asyncio.sleep(0.01)
+        assert session.app.failure is None and session.app.return_code is None
+        fresh = await _palette(session)  # and a new one works
+        await session.pilot.press(*"export", "enter")
+        await session.settle()
+        assert fresh is not palette and isinstance(session.app.screen, Prompt)
 
 
 async def test_a_press_on_a_note_just_removed_does_nothing(config):
