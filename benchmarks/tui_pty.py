@@ -429,7 +429,8 @@ def main() -> None:
     parser.add_argument("--sizes", default="200x60,400x100",
                         help="terminal sizes in cells, comma-separated")
     parser.add_argument("--seconds", type=float, default=4.0, help="length of each phase")
-    parser.add_argument("--links", default="5,20", help="emulated links in Mbit/s")
+    parser.add_argument("--links", default="5,20",
+                        help='emulated links in Mbit/s ("" for none)')
     parser.add_argument("--link-size", default="200x60")
     parser.add_argument("--link-seconds", type=float, default=5.0)
     parser.add_argument("--no-baseline", action="store_true", help="measure biceps only")
@@ -472,9 +473,12 @@ def main() -> None:
             if name == "biceps":
                 half_blocks_kb = kb
             print(line, flush=True)
+    links = [float(megabits) for megabits in arguments.links.split(",") if megabits.strip()]
+    if not links:  # --links "": the sizes alone
+        return
     print()
     print(f"{'app':<12} {'size':<10} {'link':>12} {'lag':>9} {'key ms':>10} {'answered':>9}")
-    for megabits in map(float, arguments.links.split(",")):
+    for megabits in links:
         for name, argv in apps:
             print(measure_link(name, argv, link_size, megabits, arguments.link_seconds),
                   flush=True)
