@@ -7,7 +7,8 @@ Textual has styled from its cache, and hands Textual lines that carry their term
 (:class:`PrerenderedStrip`); the pacer asks the terminal where its cursor is; the app learns
 what Textual wrote (to paint a picture's image again over it) and which error ended it;
 the terminal's input is read leniently, a paste kept whole and ended if its end never
-comes; the palette is guarded against faults of its own, as it searches and as it closes.
+comes; the palette is guarded against faults of its own, as it searches and as it closes;
+and a cache of Textual's that kept the lines of widgets gone is made to let them go.
 None of that is Textual's public API, so it is used only here, and only on a Textual known
 to have it: 8.2.7 (the first with ``XTermParser._parse_extended_key``) up to 9, with every
 attribute touched present.
@@ -32,6 +33,7 @@ from rich.console import Console
 from rich.segment import Segment
 from textual.app import App
 from textual.geometry import Region
+from textual.screen import Screen
 from textual.strip import Strip
 from textual.widget import Widget
 
@@ -66,7 +68,6 @@ def _missing() -> list[str]:
     """The private parts this module uses that the running Textual lacks."""
     from textual import constants
     from textual.command import CommandPalette
-    from textual.screen import Screen
 
     missing = []
     try:
@@ -215,7 +216,8 @@ def update_touches(update: object, area: Region) -> bool:
 class AppHooks(App):
     """An app told what Textual wrote (:meth:`screen_written`) and what error ends it
     (:meth:`ending_on`), which Textual has no public hooks for; a closing palette's faults
-    are let pass (:func:`a_closing_palette_s_fault`, :func:`palette_clicked_on_a_result_gone`)."""
+    are let pass (:func:`a_closing_palette_s_fault`), and a palette clicked on a result it
+    no longer has is closed (:func:`palette_clicked_on_a_result_gone`)."""
 
     def screen_written(self, screen: Any, update: object) -> None:
         """Textual has written ``update`` of ``screen`` to the terminal (the private path)."""
@@ -445,7 +447,7 @@ def a_closing_palette_s_fault(error: BaseException) -> bool:
     return False
 
 
-def palette_clicked_on_a_result_gone(error: BaseException) -> Any:
+def palette_clicked_on_a_result_gone(error: BaseException) -> Screen[Any] | None:
     """The palette, if ``error`` is Textual's palette list handling a click on a result it
     no longer has (IndexError in ``OptionList._on_click``): the click was on the list as
     drawn before its search changed it, and reached it after (seen in a storm of input).
