@@ -27,6 +27,7 @@ import os
 from contextlib import contextmanager
 from functools import lru_cache
 from importlib.metadata import version as installed_version
+from types import FrameType
 from typing import Any, Callable, Iterator, Sequence
 
 from rich.console import Console
@@ -217,7 +218,7 @@ class AppHooks(App):
     """An app told what Textual wrote (:meth:`screen_written`) and what error ends it
     (:meth:`ending_on`), which Textual has no public hooks for; a closing palette's faults
     are let pass (:func:`a_closing_palette_s_fault`), and a palette clicked on a result it
-    no longer has is closed (:func:`palette_clicked_on_a_result_gone`)."""
+    no longer has is closed (:func:`list_clicked_on_a_result_gone`)."""
 
     def screen_written(self, screen: Any, update: object) -> None:
         """Textual has written ``update`` of ``screen`` to the terminal (the private path)."""
@@ -235,10 +236,11 @@ class AppHooks(App):
         if ENABLED:
             if a_closing_palette_s_fault(error):
                 return
-            palette = palette_clicked_on_a_result_gone(error)
-            if palette is not None:
-                if palette is self.screen:  # its list takes no more clicks: a new one will
-                    palette.dismiss()
+            commands = list_clicked_on_a_result_gone(error)
+            if commands is not None:
+                # Its palette, if still in front: the list takes no more clicks.
+                if commands.is_attached and commands.screen is self.screen:
+                    self.screen.dismiss()
                 return
             self.ending_on(error)
         super()._handle_exception(error)
@@ -264,9 +266,6 @@ def colour_system(system: str) -> Iterator[None]:
 
 # A cache of Textual's that keeps what it should let go.
 
-_styles_caches_released = False
-
-
 def release_styles_caches() -> bool:
     """Have Textual's ``StylesCache.get_inner_outer`` cache by its two colours alone, for
     the process. Textual caches it for each StylesCache (``lru_cache`` on the method,
@@ -274,14 +273,13 @@ def release_styles_caches() -> bool:
     they hold, after their widgets have gone, and every collection of the oldest generation
     walks them. False on the public path, or where the method is not such a cache (a Textual
     that has mended it)."""
-    global _styles_caches_released
     if not ENABLED:
         return False
-    if _styles_caches_released:
-        return True
     from textual._styles_cache import StylesCache
 
     cached = StylesCache.__dict__.get("get_inner_outer")
+    if getattr(cached, "__module__", None) == __name__:  # released already
+        return True
     method = getattr(cached, "__wrapped__", None)
     code = getattr(method, "__code__", None)
     if not hasattr(cached, "cache_info") or code is None or code.co_varnames[:3] != (
@@ -296,7 +294,6 @@ def release_styles_caches() -> bool:
         return by_colours(base_background, background)
 
     StylesCache.get_inner_outer = get_inner_outer
-    _styles_caches_released = True
     return True
 
 
@@ -427,6 +424,15 @@ def guarded_palette() -> type:
     return GuardedPalette
 
 
+def _frames(error: BaseException) -> list[FrameType]:
+    """The frames ``error`` was raised through, the one that raised it last."""
+    frames, entry = [], error.__traceback__
+    while entry is not None:
+        frames.append(entry.tb_frame)
+        entry = entry.tb_next
+    return frames
+
+
 def a_closing_palette_s_fault(error: BaseException) -> bool:
     """Whether ``error`` is Textual's command palette looking for a widget of its own
     (NoMatches) once its widgets have gone, as it closes: a timer or a watcher of its
@@ -438,31 +444,27 @@ def a_closing_palette_s_fault(error: BaseException) -> bool:
 
     if not isinstance(error, NoMatches):
         return False
-    entry = error.__traceback__
-    while entry is not None:
-        palette = entry.tb_frame.f_locals.get("self")
+    for frame in _frames(error):
+        palette = frame.f_locals.get("self")
         if isinstance(palette, CommandPalette):
             return not palette.query(CommandList)
-        entry = entry.tb_next
     return False
 
 
-def palette_clicked_on_a_result_gone(error: BaseException) -> Screen[Any] | None:
-    """The palette, if ``error`` is Textual's palette list handling a click on a result it
+def list_clicked_on_a_result_gone(error: BaseException) -> Widget | None:
+    """The palette's list, if ``error`` is Textual's list handling a click on a result it
     no longer has (IndexError in ``OptionList._on_click``): the click was on the list as
     drawn before its search changed it, and reached it after (seen in a storm of input).
     Nothing is lost by letting it pass, no result was there to choose; but the list's
-    messages end with the error, so the palette is closed (ctrl+p opens a new one)."""
+    messages end with the error, so its palette is closed (ctrl+p opens a new one)."""
     from textual.command import CommandList
 
-    if not isinstance(error, IndexError) or error.__traceback__ is None:
+    frames = _frames(error) if isinstance(error, IndexError) else []
+    if not frames or frames[-1].f_code.co_name != "_on_click":
         return None
-    entry = error.__traceback__
-    while entry.tb_next is not None:  # to where it was raised
-        entry = entry.tb_next
-    frame = entry.tb_frame
-    commands, clicked = frame.f_locals.get("self"), frame.f_locals.get("clicked_option")
-    if (frame.f_code.co_name == "_on_click" and isinstance(commands, CommandList)
-            and isinstance(clicked, int) and clicked >= commands.option_count):
-        return commands.screen
+    commands, clicked = frames[-1].f_locals.get("self"), frames[-1].f_locals.get(
+        "clicked_option")
+    if (isinstance(commands, CommandList) and isinstance(clicked, int)
+            and clicked >= commands.option_count):
+        return commands
     return None

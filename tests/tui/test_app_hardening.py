@@ -199,6 +199,8 @@ async def test_a_click_on_a_result_the_palette_has_since_dropped_does_not_end_th
             if session.app.screen is not palette:
                 break
             await asyncio.sleep(0.01)
+        else:
+            raise AssertionError("the palette never closed")
         assert session.app.failure is None and session.app.return_code is None
         fresh = await _palette(session)  # and a new one works
         await session.pilot.press(*"export", "enter")
