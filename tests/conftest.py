@@ -84,13 +84,24 @@ def _state_home(tmp_path_factory: pytest.TempPathFactory) -> None:
     os.environ["XDG_STATE_HOME"] = str(tmp_path_factory.mktemp("state"))
 
 
+# What says which terminal a process runs in (terminal/detect.py reads them, and the
+# command's choices follow): the tests' own, not those of the terminal the suite is run in.
+RUNNERS_TERMINAL = ("TMUX", "STY", "COLORTERM", "TERM_PROGRAM", "TERM_PROGRAM_VERSION",
+                    "LC_TERMINAL", "VTE_VERSION", "WT_SESSION")
+
+
 @pytest.fixture(autouse=True, scope="session")
-def _sizes_from_the_terminal() -> None:
+def _not_the_runners_terminal() -> None:
     # The apps the tests start in ptys and real terminals must take their size from the
     # terminal, as a user's do. Textual takes COLUMNS and LINES over it, and pytest-xdist's
     # workers have them set (80x24).
     for name in ("COLUMNS", "LINES"):
         os.environ.pop(name, None)
+    # Run inside tmux, the apps the tests build chose 256 colours and the commands asked
+    # tmux to pass images through: 26 tests failed there that pass without a terminal.
+    for name in RUNNERS_TERMINAL:
+        os.environ.pop(name, None)
+    os.environ["TERM"] = "xterm"
 
 
 @pytest.fixture
